@@ -1,0 +1,55 @@
+#pragma once
+// The planar linkage L_0 in the profile plane pi_0 (MATH.md section 4, paper
+// section 3.1): its motion parameter, the case (a)/(b) and the apexes at t.
+
+#include "phedra/axial_net.h"
+
+#include <vector>
+
+namespace phedra {
+
+/// Which apex moves with t: S_0 in case (a), S_1 in case (b).
+enum class MotionCase { a, b };
+
+const char* to_string(MotionCase c);
+
+/// S_0, S_1 and V_{0,0} = (x, 0, 0) of the axial net at one t (canonical frame).
+struct LinkageStart {
+  double s0 = 0.0;
+  double s1 = 0.0;
+  double x = 0.0;
+};
+
+class Linkage {
+ public:
+  Linkage() = default;
+  /// Decides the case from the axial net (the first row where |S_0 - V| and
+  /// |S_1 - V| differ) and checks the scissor case of the paper's Remark 1
+  /// (equal distances allow only '+' signs): InvalidInputError otherwise.
+  Linkage(const AxialNet& axial, const CanonicalInput& input);
+
+  MotionCase motion_case() const { return case_; }
+  /// The canonical t of the input configuration (z_0 or z_1).
+  double t_star() const { return t_star_; }
+  /// The bound |t| <= r of the moving bar: V_{0,0} reaches the axis there.
+  double bound() const { return moving_radius_; }
+
+  /// S_0(t), S_1(t), V_{0,0}(t). Returns false when t is past the bound (x^2 < 0);
+  /// `margin` gets x^2 / r^2 of the moving bar.
+  bool start(double t, LinkageStart& out, double& margin) const;
+
+  /// Given the start, fills apex heights s[0..n] and row 0 of the axial net at t
+  /// (`row` has n entries) by the L_0 recursion.
+  void complete(const LinkageStart& start, double* apexes, Vec3* row) const;
+
+ private:
+  MotionCase case_ = MotionCase::a;
+  double t_star_ = 0.0;
+  double moving_radius_ = 0.0;      ///< |V_{0,0} - S_moving|
+  double other_radius_ = 0.0;       ///< |V_{0,0} - S_other|
+  double other_sign_ = 1.0;         ///< sgn of the other apex's z
+  std::vector<double> ratios_;      ///< rho_{0,j}
+  std::vector<double> mirror_;      ///< +1 for '+', -1 for '-' (M+/M- on z)
+};
+
+}  // namespace phedra

@@ -1,0 +1,36 @@
+#pragma once
+// Reading and writing presets (JSON, schema in presets/preset.schema.json,
+// documented in docs/presets.md). Parsing checks types and shapes only; the
+// geometric assumptions are checked by validate() and the PHedron constructor.
+
+#include "phedra/control_polylines.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string_view>
+
+namespace phedra {
+
+/// Control polylines from a parsed preset object. Throws InvalidInputError naming
+/// the field (for example "trajectory[2][1]") for a missing key, an unknown key,
+/// a wrong type, a wrong shape or a non-finite number.
+ControlPolylines preset_from_json(const nlohmann::json& preset);
+
+/// Parses preset text. Malformed JSON throws InvalidInputError with the line and
+/// column of the problem.
+ControlPolylines parse_preset(std::string_view text);
+
+/// Reads and parses a preset file (IOError when it cannot be read).
+ControlPolylines load_preset(const std::filesystem::path& path);
+
+/// The preset object of `input` (round-trips through preset_from_json).
+nlohmann::json preset_to_json(const ControlPolylines& input);
+
+/// Parses JSON text; a syntax error becomes InvalidInputError("", "line L, column C: ...").
+nlohmann::json parse_json_text(std::string_view text);
+
+/// Reads a whole file (IOError naming the path when it cannot).
+std::string read_text_file(const std::filesystem::path& path);
+
+}  // namespace phedra

@@ -1,0 +1,92 @@
+#include "phedra/axial_net.h"
+
+#include "phedra/errors.h"
+#include "phedra/number_format.h"
+#include "phedra/tolerances.h"
+
+#include <cmath>
+#include <string>
+
+namespace phedra {
+namespace {
+
+std::string vertex_name(std::size_t i, std::size_t j) {
+  return "V_{" + std::to_string(i) + "," + std::to_string(j) + "}";
+}
+
+/// Step 1: translate the trajectory from point i on along edge i so that the
+/// translated profile plane pi_i contains the z-axis.
+void build_axial_trajectory(const CanonicalInput& in, AxialNet& net) {
+  const std::size_t rows = in.trajectory.size();
+  net.edge_scale.assign(rows, 1.0);
+  const double eps = tolerance::scaled(tolerance::coincident, in.scale);
+  net.vertices[0] = in.trajectory[0];
+  net.vertices[net.columns] = in.trajectory[1];  // pi_1 contains the axis by the choice of frame
+  for (std::size_t i = 2; i < rows; ++i) {
+    const Vec3 edge = in.trajectory[i] - in.trajectory[i - 1];
+    const Vec3& d = in.directions[i];
+    const Vec3 normal(-d.y(), d.x(), 0.0);
+    const double along = normal.dot(edge);
+    if (std::abs(along) <= tolerance::edge_plane_sine * normal.norm() * edge.norm()) {
+      throw InvalidInputError("trajectory[" + std::to_string(i) + "]",
+                              "the edge from trajectory[" + std::to_string(i - 1) +
+                                  "] is parallel to profile plane " + std::to_string(i) +
+                                  ", so the plane cannot be translated onto the axis (MATH.md section 2, step 1)");
+    }
+    const Vec3& previous = net.vertices[(i - 1) * net.columns];
+    const double k = -normal.dot(previous) / along;
+    net.edge_scale[i] = k;
+    const Vec3 axial = previous + k * edge;
+    if (axial.head<2>().norm() <= eps) {
+      throw InvalidInputError("trajectory[" + std::to_string(i) + "]",
+                              "the axial net puts " + vertex_name(i, 0) +
+                                  " on the axis (profile planes " + std::to_string(i - 1) + " and " +
+                                  std::to_string(i) + " meet the trajectory there); the P-hedron is degenerate");
+    }
+    net.vertices[i * net.columns] = axial;
+  }
+}
+
+/// Step 2: profiles by sigma+ (central scaling) or sigma- (perspective collineation).
+void build_profiles(const CanonicalInput& in, AxialNet& net) {
+  const std::size_t n = net.columns;
+  const auto& z = in.heights;
+  const double eps = tolerance::scaled(tolerance::vanishing_line, in.scale);
+  net.ratios.assign(net.rows * (n - 1), 0.0);
+  for (std::size_t i = 0; i < net.rows; ++i) {
+    for (std::size_t j = 0; j + 1 < n; ++j) {
+      const double c = z[j + 1];
+      const Vec3& x = net.vertices[i * n + j];
+      double ratio;
+      if (in.signs[j] == Sign::plus) {
+        ratio = (z[j + 2] - c) / (z[j] - c);
+      } else {
+        const double denominator = 2.0 * (x.z() - c) - (z[j] - c);
+        if (std::abs(denominator) <= eps) {
+          throw InvalidInputError("signs[" + std::to_string(j) + "]",
+                                  "the perspective collineation of the '-' apex S_" + std::to_string(j + 1) +
+                                      " sends " + vertex_name(i, j + 1) + " to infinity (" + vertex_name(i, j) +
+                                      " lies on its vanishing line); change the sign or the apex heights");
+        }
+        ratio = (z[j + 2] - c) / denominator;
+      }
+      const Vec3 centre(0.0, 0.0, c);
+      net.vertices[i * n + j + 1] = centre + ratio * (x - centre);
+      net.ratios[i * (n - 1) + j] = ratio;
+    }
+  }
+}
+
+}  // namespace
+
+AxialNet build_axial_net(const CanonicalInput& in) {
+  AxialNet net;
+  net.rows = in.trajectory.size();
+  net.columns = in.heights.size() - 1;
+  net.vertices.assign(net.rows * net.columns, Vec3::Zero());
+  build_axial_trajectory(in, net);
+  build_profiles(in, net);
+  return net;
+}
+
+}  // namespace phedra

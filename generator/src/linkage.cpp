@@ -1,0 +1,87 @@
+#include "phedra/linkage.h"
+
+#include "phedra/errors.h"
+#include "phedra/tolerances.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace phedra {
+
+const char* to_string(MotionCase c) { return c == MotionCase::a ? "a" : "b"; }
+
+Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
+  const double s0 = in.heights[0], s1 = in.heights[1];
+  const double eps = tolerance::scaled(tolerance::scissor, in.scale);
+  bool decided = false;
+  for (std::size_t i = 0; i < axial.rows; ++i) {
+    const Vec3& v = axial.vertex(i, 0);
+    const double d0 = (v - Vec3(0, 0, s0)).norm();
+    const double d1 = (v - Vec3(0, 0, s1)).norm();
+    if (std::abs(d0 - d1) <= eps) {
+      const auto minus = std::find(in.signs.begin(), in.signs.end(), Sign::minus);
+      if (minus != in.signs.end()) {
+        throw InvalidInputError(
+            "signs[" + std::to_string(minus - in.signs.begin()) + "]",
+            "V_{" + std::to_string(i) + ",0} of the axial net is equidistant from S_0 and S_1 (a scissor "
+            "linkage), which allows only '+' signs (paper, Remark 1); a '-' sends vertices to infinity");
+      }
+      continue;
+    }
+    if (!decided) {
+      case_ = d0 < d1 ? MotionCase::a : MotionCase::b;
+      decided = true;
+    }
+  }
+  if (!decided) {
+    throw InvalidInputError("", "every trajectory vertex is equidistant from S_0 and S_1: the motion "
+                                "parameter is undefined (the trajectory is orthogonal to the axis)");
+  }
+  const Vec3& v00 = axial.vertex(0, 0);
+  const double moving = case_ == MotionCase::a ? s0 : s1;
+  const double other = case_ == MotionCase::a ? s1 : s0;
+  t_star_ = moving;
+  moving_radius_ = std::hypot(v00.x(), moving - v00.z());
+  other_radius_ = std::hypot(v00.x(), other - v00.z());
+  other_sign_ = other < 0.0 ? -1.0 : 1.0;
+  const std::size_t n = axial.columns;
+  ratios_.resize(n - 1);
+  mirror_.resize(n - 1);
+  for (std::size_t j = 0; j + 1 < n; ++j) {
+    ratios_[j] = axial.ratio(0, j);
+    mirror_[j] = in.signs[j] == Sign::plus ? 1.0 : -1.0;
+  }
+}
+
+bool Linkage::start(double t, LinkageStart& out, double& margin) const {
+  const double r2 = moving_radius_ * moving_radius_;
+  const double x2 = r2 - t * t;
+  margin = x2 / r2;
+  if (!(x2 >= 0.0)) return false;
+  const double other2 = std::max(0.0, other_radius_ * other_radius_ - x2);
+  const double other = other_sign_ * std::sqrt(other2);
+  out.x = std::sqrt(x2);
+  if (case_ == MotionCase::a) {
+    out.s0 = t;
+    out.s1 = other;
+  } else {
+    out.s1 = t;
+    out.s0 = other;
+  }
+  return true;
+}
+
+void Linkage::complete(const LinkageStart& start, double* s, Vec3* row) const {
+  s[0] = start.s0;
+  s[1] = start.s1;
+  row[0] = Vec3(start.x, 0.0, 0.0);
+  for (std::size_t j = 0; j < ratios_.size(); ++j) {
+    const double rho = ratios_[j];
+    const double c = s[j + 1];
+    row[j + 1] = Vec3(rho * row[j].x(), 0.0, c + rho * (row[j].z() - c));
+    s[j + 2] = row[j + 1].z() + rho * mirror_[j] * (s[j] - row[j].z());
+  }
+}
+
+}  // namespace phedra

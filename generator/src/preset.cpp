@@ -1,0 +1,153 @@
+#include "phedra/preset.h"
+
+#include "phedra/errors.h"
+
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace phedra {
+namespace {
+
+using nlohmann::json;
+
+std::string type_name(const json& value) { return value.type_name(); }
+
+double read_number(const json& value, const std::string& field) {
+  if (!value.is_number()) {
+    throw InvalidInputError(field, "expected a number, got " + type_name(value));
+  }
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) throw InvalidInputError(field, "is not a finite number");
+  return x;
+}
+
+Vec3 read_vector(const json& value, const std::string& field) {
+  if (!value.is_array() || value.size() != 3) {
+    throw InvalidInputError(field, "expected an array of 3 numbers [x, y, z], got " +
+                                       (value.is_array() ? "an array of " + std::to_string(value.size()) +
+                                                               " elements"
+                                                         : type_name(value)));
+  }
+  Vec3 v;
+  for (int k = 0; k < 3; ++k) v[k] = read_number(value[k], field + "[" + std::to_string(k) + "]");
+  return v;
+}
+
+Points read_points(const json& value, const std::string& field) {
+  if (!value.is_array()) throw InvalidInputError(field, "expected an array of [x, y, z], got " + type_name(value));
+  Points points;
+  points.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    points.push_back(read_vector(value[i], field + "[" + std::to_string(i) + "]"));
+  }
+  return points;
+}
+
+std::vector<double> read_numbers(const json& value, const std::string& field) {
+  if (!value.is_array()) throw InvalidInputError(field, "expected an array of numbers, got " + type_name(value));
+  std::vector<double> numbers;
+  numbers.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    numbers.push_back(read_number(value[i], field + "[" + std::to_string(i) + "]"));
+  }
+  return numbers;
+}
+
+const json& required(const json& preset, const char* key) {
+  auto it = preset.find(key);
+  if (it == preset.end()) throw InvalidInputError(key, "missing (required key)");
+  return *it;
+}
+
+const std::set<std::string>& known_keys() {
+  static const std::set<std::string> keys{"$schema", "name", "description", "trajectory",
+                                          "directions", "axis", "apex_heights", "signs"};
+  return keys;
+}
+
+std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::size_t byte) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t k = 0; k < byte && k < text.size(); ++k) {
+    if (text[k] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+}  // namespace
+
+ControlPolylines preset_from_json(const json& preset) {
+  if (!preset.is_object()) throw InvalidInputError("", "a preset must be a JSON object, got " + type_name(preset));
+  for (const auto& [key, value] : preset.items()) {
+    if (!known_keys().count(key)) {
+      throw InvalidInputError(key, "unknown key (known: name, description, trajectory, directions, axis, "
+                                   "apex_heights, signs)");
+    }
+  }
+  ControlPolylines input;
+  if (auto it = preset.find("name"); it != preset.end()) {
+    if (!it->is_string()) throw InvalidInputError("name", "expected a string, got " + type_name(*it));
+    input.name = it->get<std::string>();
+  }
+  input.trajectory = read_points(required(preset, "trajectory"), "trajectory");
+  input.directions = read_points(required(preset, "directions"), "directions");
+  if (auto it = preset.find("axis"); it != preset.end()) input.axis = read_vector(*it, "axis");
+  input.apex_heights = read_numbers(required(preset, "apex_heights"), "apex_heights");
+  const json& signs = required(preset, "signs");
+  if (!signs.is_string()) {
+    throw InvalidInputError("signs", "expected a string of '+' and '-', got " + type_name(signs));
+  }
+  input.signs = signs_from_string(signs.get<std::string>());
+  return input;
+}
+
+json parse_json_text(std::string_view text) {
+  try {
+    return json::parse(text.begin(), text.end());
+  } catch (const json::parse_error& e) {
+    // e.byte is 1-based and points just past the offending character.
+    const std::size_t at = e.byte == 0 ? 0 : e.byte - 1;
+    auto [line, column] = line_and_column(text, at);
+    std::string what = e.what();
+    if (auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
+    throw InvalidInputError("", "malformed JSON at line " + std::to_string(line) + ", column " +
+                                    std::to_string(column) + ": " + what);
+  }
+}
+
+ControlPolylines parse_preset(std::string_view text) { return preset_from_json(parse_json_text(text)); }
+
+std::string read_text_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw IOError(path.string() + ": is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError(path.string() + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw IOError(path.string() + ": read error");
+  return buffer.str();
+}
+
+ControlPolylines load_preset(const std::filesystem::path& path) { return parse_preset(read_text_file(path)); }
+
+json preset_to_json(const ControlPolylines& input) {
+  auto points = [](const Points& ps) {
+    json a = json::array();
+    for (const Vec3& p : ps) a.push_back({p.x(), p.y(), p.z()});
+    return a;
+  };
+  return json{{"name", input.name},
+              {"trajectory", points(input.trajectory)},
+              {"directions", points(input.directions)},
+              {"axis", {input.axis.x(), input.axis.y(), input.axis.z()}},
+              {"apex_heights", input.apex_heights},
+              {"signs", signs_to_string(input.signs)}};
+}
+
+}  // namespace phedra

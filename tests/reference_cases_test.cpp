@@ -1,0 +1,55 @@
+// Agreement with the reference cases of ../shared/cases (copied to
+// tests/data/cases): an independent implementation of MATH.md.
+
+#include "phedra/phedron.h"
+#include "phedra/preset.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace phedra;
+using nlohmann::json;
+
+namespace {
+
+json load_case(const std::string& name) {
+  std::ifstream in(std::filesystem::path(PHEDRA_TEST_DATA_DIR) / "cases" / (name + ".json"));
+  return json::parse(in);
+}
+
+}  // namespace
+
+TEST_CASE("open reference cases: t*, case, interval and positions", "[reference]") {
+  for (const std::string name : {"open-all-plus", "open-all-minus", "open-mixed-tilted-axis"}) {
+    CAPTURE(name);
+    const json c = load_case(name);
+    const PHedron p(preset_from_json(c["preset"]));
+    const json& e = c["expected"];
+    const double size = p.model_size();
+    const double scale = std::max(1.0, std::abs(e["t_star"].get<double>()));
+    CHECK(p.t_star() == Approx(e["t_star"].get<double>()).margin(1e-12 * scale));
+    CHECK(std::string(to_string(p.motion_case())) == e["case"].get<std::string>());
+    const double lo = e["flexion_interval"][0], hi = e["flexion_interval"][1];
+    CHECK(std::abs(p.flexion_interval().lower.t - lo) <= 1e-9 * size);
+    CHECK(std::abs(p.flexion_interval().upper.t - hi) <= 1e-9 * size);
+    for (const json& sample : e["samples"]) {
+      const double t = sample["t"];
+      CAPTURE(t);
+      const Points v = p.evaluate(t);
+      const auto& grid = sample["grid"];
+      REQUIRE(grid.size() == p.topology().rows());
+      double worst = 0;
+      for (std::size_t i = 0; i < grid.size(); ++i) {
+        REQUIRE(grid[i].size() == p.topology().columns());
+        for (std::size_t col = 0; col < grid[i].size(); ++col) {
+          const Vec3 expected(grid[i][col][0], grid[i][col][1], grid[i][col][2]);
+          worst = std::max(worst, (v[p.topology().index(i, col)] - expected).norm());
+        }
+      }
+      CHECK(worst <= 1e-9 * size);
+    }
+  }
+}
