@@ -17,8 +17,9 @@ namespace phedra {
 /// a wrong type, a wrong shape or a non-finite number.
 ControlPolylines preset_from_json(const nlohmann::json& preset);
 
-/// Parses preset text. Malformed JSON throws InvalidInputError with the line and
-/// column of the problem.
+/// Parses preset text: a preset object, or a reference case file whose preset
+/// sits under the key "preset". Malformed JSON throws InvalidInputError with the
+/// line and column of the problem.
 ControlPolylines parse_preset(std::string_view text);
 
 /// Reads and parses a preset file (IOError when it cannot be read).

@@ -1,0 +1,52 @@
+#include "cli.h"
+
+#include "commands.h"
+#include "phedra/errors.h"
+
+#include <ostream>
+
+namespace phedra::cli {
+
+int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  Context context{out, err};
+  CLI::App app{"phedra: design and animate P-hedra, rigid-foldable planar-quad surfaces given by three "
+               "control polylines (trajectory, directions, apexes)",
+               "phedra"};
+  app.set_version_flag("--version", std::string("phedra ") + PHEDRA_VERSION);
+  app.require_subcommand(1);
+  app.footer("Exit codes: 0 ok, 1 a check failed, 2 bad input, 3 file error, 4 internal error.\n"
+             "Presets: docs/presets.md. Run `phedra COMMAND --help` for a command's options.");
+  add_info_command(app, context);
+  add_sample_command(app, context);
+  add_check_command(app, context);
+
+  std::vector<std::string> reversed(args.rbegin(), args.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::CallForHelp& e) {
+    app.exit(e, out, err);
+    return 0;
+  } catch (const CLI::CallForAllHelp& e) {
+    app.exit(e, out, err);
+    return 0;
+  } catch (const CLI::CallForVersion& e) {
+    app.exit(e, out, err);
+    return 0;
+  } catch (const CLI::ParseError& e) {
+    err << "phedra: error: " << e.what() << "\n";
+    err << "Run `phedra --help` for usage.\n";
+    return static_cast<int>(ExitCode::bad_input);
+  } catch (const Error& e) {
+    err << "phedra: error: " << (context.preset.empty() ? "" : context.preset + ": ") << e.what() << "\n";
+    return static_cast<int>(e.exit_code());
+  } catch (const std::bad_alloc&) {
+    err << "phedra: error: out of memory\n";
+    return static_cast<int>(ExitCode::internal);
+  } catch (const std::exception& e) {
+    err << "phedra: internal error: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::internal);
+  }
+  return context.exit_code;
+}
+
+}  // namespace phedra::cli

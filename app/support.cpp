@@ -1,0 +1,24 @@
+#include "support.h"
+
+#include "phedra/atomic_file.h"
+#include "phedra/preset.h"
+
+#include <ostream>
+
+namespace phedra::cli {
+
+PHedron load_phedron(Context& context, const std::string& path) {
+  context.preset = path;
+  return PHedron(load_preset(path));
+}
+
+void emit(const std::string& content, const std::string& path, const std::string& input, std::ostream& out) {
+  if (path.empty() || path == "-") {
+    out << content;
+    return;
+  }
+  refuse_overwriting_input(path, input);
+  write_file_atomically(path, content);
+}
+
+}  // namespace phedra::cli

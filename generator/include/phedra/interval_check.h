@@ -1,0 +1,51 @@
+#pragma once
+// Planarity and isometry over the whole flexion interval (dense samples, both
+// ends and t*), with the worst value and where it occurs. Shared by
+// `phedra check`, `phedra info` and the tests.
+
+#include "phedra/phedron.h"
+#include "phedra/tolerances.h"
+
+#include <nlohmann/json.hpp>
+
+#include <iosfwd>
+#include <string>
+
+namespace phedra {
+
+struct CheckOptions {
+  /// Uniform samples of [t_lambda, t_mu], ends included (>= 2); t* is added.
+  std::size_t samples = 200;
+  /// Pass when every figure is at most this times the model size.
+  double relative_tolerance = tolerance::check_relative;
+};
+
+/// The worst value of one figure over the samples.
+struct WorstCase {
+  double value = 0.0;     ///< absolute length
+  double t = 0.0;         ///< where it occurs
+  std::string location;   ///< which face / segment, in grid labels
+};
+
+struct IntervalCheckReport {
+  double model_size = 0.0;
+  double tolerance = 0.0;  ///< absolute: relative_tolerance * model_size
+  double t_lambda = 0.0, t_star = 0.0, t_mu = 0.0;
+  std::size_t samples = 0;
+  WorstCase planarity;  ///< distance of a quad's 4th vertex from the plane of the others
+  WorstCase isometry;   ///< |length(t) - length(t*)| over edges and face diagonals
+  double reproduction = 0.0;  ///< max |evaluate(t*) - constructed net| (input reproduced at t*)
+
+  bool passed() const;
+  nlohmann::json to_json() const;
+};
+
+std::ostream& operator<<(std::ostream& out, const IntervalCheckReport& report);
+
+/// Checks the P-hedron at t* only (samples = 1).
+IntervalCheckReport check_at_t_star(const PHedron& phedron, double relative_tolerance = tolerance::check_relative);
+
+/// Checks over the whole flexion interval.
+IntervalCheckReport check_over_interval(const PHedron& phedron, const CheckOptions& options = {});
+
+}  // namespace phedra
