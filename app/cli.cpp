@@ -36,8 +36,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     err << "phedra: error: " << e.what() << "\n";
     err << "Run `phedra --help` for usage.\n";
     return static_cast<int>(ExitCode::bad_input);
-  } catch (const Error& e) {
+  } catch (const InvalidInputError& e) {
     err << "phedra: error: " << (context.preset.empty() ? "" : context.preset + ": ") << e.what() << "\n";
+    return static_cast<int>(e.exit_code());
+  } catch (const Error& e) {
+    err << "phedra: error: " << e.what() << "\n";
     return static_cast<int>(e.exit_code());
   } catch (const std::bad_alloc&) {
     err << "phedra: error: out of memory\n";

@@ -4,6 +4,7 @@
 #include "phedra/number_format.h"
 #include "phedra/tolerances.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -47,6 +48,24 @@ void build_axial_trajectory(const CanonicalInput& in, AxialNet& net) {
   }
 }
 
+/// Paper, Remark 1: an axial trajectory vertex equidistant from S_0 and S_1 (a
+/// scissor-like linkage) allows only '+' signs; a '-' sends vertices to infinity.
+void check_scissor_case(const CanonicalInput& in, const AxialNet& net) {
+  const auto minus = std::find(in.signs.begin(), in.signs.end(), Sign::minus);
+  if (minus == in.signs.end()) return;
+  const double eps = tolerance::scaled(tolerance::scissor, in.scale);
+  const Vec3 s0(0, 0, in.heights[0]), s1(0, 0, in.heights[1]);
+  for (std::size_t i = 0; i < net.rows; ++i) {
+    const Vec3& v = net.vertices[i * net.columns];
+    if (std::abs((v - s0).norm() - (v - s1).norm()) <= eps) {
+      throw InvalidInputError("signs[" + std::to_string(minus - in.signs.begin()) + "]",
+                              vertex_name(i, 0) + " of the axial net is equidistant from S_0 and S_1 (a scissor-like "
+                              "linkage), which allows only '+' signs (paper, Remark 1); a '-' sends vertices to "
+                              "infinity");
+    }
+  }
+}
+
 /// Step 2: profiles by sigma+ (central scaling) or sigma- (perspective collineation).
 void build_profiles(const CanonicalInput& in, AxialNet& net) {
   const std::size_t n = net.columns;
@@ -85,6 +104,7 @@ AxialNet build_axial_net(const CanonicalInput& in) {
   net.columns = in.heights.size() - 1;
   net.vertices.assign(net.rows * net.columns, Vec3::Zero());
   build_axial_trajectory(in, net);
+  check_scissor_case(in, net);
   build_profiles(in, net);
   return net;
 }

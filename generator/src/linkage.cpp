@@ -19,16 +19,7 @@ Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
     const Vec3& v = axial.vertex(i, 0);
     const double d0 = (v - Vec3(0, 0, s0)).norm();
     const double d1 = (v - Vec3(0, 0, s1)).norm();
-    if (std::abs(d0 - d1) <= eps) {
-      const auto minus = std::find(in.signs.begin(), in.signs.end(), Sign::minus);
-      if (minus != in.signs.end()) {
-        throw InvalidInputError(
-            "signs[" + std::to_string(minus - in.signs.begin()) + "]",
-            "V_{" + std::to_string(i) + ",0} of the axial net is equidistant from S_0 and S_1 (a scissor "
-            "linkage), which allows only '+' signs (paper, Remark 1); a '-' sends vertices to infinity");
-      }
-      continue;
-    }
+    if (std::abs(d0 - d1) <= eps) continue;  // scissor row: decided by a later row
     if (!decided) {
       case_ = d0 < d1 ? MotionCase::a : MotionCase::b;
       decided = true;
@@ -41,7 +32,6 @@ Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
   const Vec3& v00 = axial.vertex(0, 0);
   const double moving = case_ == MotionCase::a ? s0 : s1;
   const double other = case_ == MotionCase::a ? s1 : s0;
-  t_star_ = moving;
   moving_radius_ = std::hypot(v00.x(), moving - v00.z());
   other_radius_ = std::hypot(v00.x(), other - v00.z());
   other_sign_ = other < 0.0 ? -1.0 : 1.0;

@@ -68,20 +68,24 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   }
   model_size_ = bounding_box_diagonal(reference_);
 
-  const double tc = linkage_.t_star();
-  const StripMargin at_star = canonical_margin(tc);
+  // t is the user's height of the moving apex: t* is that input height exactly, and
+  // every t (search, checks, evaluate) goes through the same conversion.
+  t_star_ = input_.apex_heights[motion_case() == MotionCase::a ? 0 : 1];
+  const StripMargin at_star = margin(t_star_);
+  auto bifurcation = [&](const StripMargin& m, const std::string& detail) {
+    return InvalidInputError(m.strip == 0 ? std::string("trajectory[0]") : "directions[" + std::to_string(m.strip) + "]",
+                             "the input is (numerically) in a bifurcation configuration: " + detail +
+                                 " (paper, Remark 3); move it away from the flexion limit");
+  };
   if (!(at_star.value > tolerance::bifurcation_margin)) {
-    throw InvalidInputError(at_star.strip == 0 ? std::string("trajectory[0]")
-                                               : "directions[" + std::to_string(at_star.strip) + "]",
-                            "the input is in a bifurcation configuration (flexion limit margin " +
-                                format_number(at_star.value) + " at strip " + std::to_string(at_star.strip) + ")");
+    throw bifurcation(at_star, "strip " + std::to_string(at_star.strip) + " is at its flexion limit (margin " +
+                                   format_number(at_star.value) + ")");
   }
   const double bound = linkage_.bound();
-  FlexionInterval found =
-      find_flexion_interval(tc, -bound, bound, [this](double t) { return canonical_margin(t); });
-  found.lower.t = frame_.height_to_user(found.lower.t);
-  found.upper.t = frame_.height_to_user(found.upper.t);
-  interval_ = found;
+  interval_ = find_flexion_interval(t_star_, frame_.height_to_user(-bound), frame_.height_to_user(bound),
+                                    [this](double t) { return margin(t); });
+  if (!(interval_.lower.t < t_star_)) throw bifurcation({0, interval_.lower.strip}, "t* is the lower flexion limit");
+  if (!(interval_.upper.t > t_star_)) throw bifurcation({0, interval_.upper.strip}, "t* is the upper flexion limit");
 }
 
 double PHedron::t_at_fraction(double fraction) const {

@@ -118,6 +118,18 @@ json parse_json_text(std::string_view text) {
     if (auto pos = what.find("syntax error"); pos != std::string::npos) what = what.substr(pos);
     throw InvalidInputError("", "malformed JSON at line " + std::to_string(line) + ", column " +
                                     std::to_string(column) + ": " + what);
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double ("number overflow parsing '1e999'"): locate it.
+    std::string what = e.what();
+    std::string where;
+    if (auto open = what.find('\''), close = what.rfind('\''); open != std::string::npos && close > open) {
+      if (auto at = text.find(what.substr(open + 1, close - open - 1)); at != std::string_view::npos) {
+        auto [line, column] = line_and_column(text, at);
+        where = " at line " + std::to_string(line) + ", column " + std::to_string(column);
+      }
+    }
+    if (auto pos = what.find("number overflow"); pos != std::string::npos) what = what.substr(pos);
+    throw InvalidInputError("", "not a finite number" + where + ": " + what);
   }
 }
 

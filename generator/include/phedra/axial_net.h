@@ -35,7 +35,8 @@ struct AxialNet {
 
 /// Builds the axial net. Throws InvalidInputError when a trajectory edge is
 /// parallel to its profile plane, when an axial trajectory vertex falls on the
-/// axis, or when sigma- sends a vertex to infinity (naming i and j).
+/// axis, in the scissor case with a '-' sign (paper, Remark 1), or when sigma-
+/// sends a vertex to (near) infinity (naming i and j).
 AxialNet build_axial_net(const CanonicalInput& input);
 
 }  // namespace phedra

@@ -23,14 +23,11 @@ struct LinkageStart {
 class Linkage {
  public:
   Linkage() = default;
-  /// Decides the case from the axial net (the first row where |S_0 - V| and
-  /// |S_1 - V| differ) and checks the scissor case of the paper's Remark 1
-  /// (equal distances allow only '+' signs): InvalidInputError otherwise.
+  /// Decides the case from the axial net: the first row where |S_0 - V| and
+  /// |S_1 - V| differ (build_axial_net has excluded the scissor case with '-').
   Linkage(const AxialNet& axial, const CanonicalInput& input);
 
   MotionCase motion_case() const { return case_; }
-  /// The canonical t of the input configuration (z_0 or z_1).
-  double t_star() const { return t_star_; }
   /// The bound |t| <= r of the moving bar: V_{0,0} reaches the axis there.
   double bound() const { return moving_radius_; }
 
@@ -44,7 +41,6 @@ class Linkage {
 
  private:
   MotionCase case_ = MotionCase::a;
-  double t_star_ = 0.0;
   double moving_radius_ = 0.0;      ///< |V_{0,0} - S_moving|
   double other_radius_ = 0.0;       ///< |V_{0,0} - S_other|
   double other_sign_ = 1.0;         ///< sgn of the other apex's z

@@ -30,7 +30,7 @@ class PHedron {
   /// The motion parameter t is the axis coordinate (user frame) of the moving
   /// apex: S_0 in case (a), S_1 in case (b).
   MotionCase motion_case() const { return linkage_.motion_case(); }
-  double t_star() const { return frame_.height_to_user(linkage_.t_star()); }
+  double t_star() const { return t_star_; }
   /// [t_lambda, t_mu] (user t) with the strip that causes each end.
   const FlexionInterval& flexion_interval() const { return interval_; }
   /// t_lambda + fraction * (t_mu - t_lambda); fraction in [0, 1] (InvalidInputError otherwise).
@@ -71,6 +71,7 @@ class PHedron {
   std::vector<double> transversal_scales_; ///< parallel-net factors, (m+1) x n
   Points reference_;
   double model_size_ = 0.0;
+  double t_star_ = 0.0;
   FlexionInterval interval_;
 };
 

@@ -1,0 +1,182 @@
+// Properties of the construction and the motion over many generated inputs:
+// all sign patterns, n = 2..12, m up to 50, random axes and placements.
+
+#include "phedra/errors.h"
+#include "phedra/geometry_checks.h"
+#include "phedra/interval_check.h"
+#include "phedra/phedron.h"
+#include "phedra/preset.h"
+#include "support/random_input.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <optional>
+
+using namespace phedra;
+using phedra::test::random_input;
+using phedra::test::RandomInputShape;
+
+namespace {
+
+/// Normal of the best-fitting plane through one profile row (all its points are coplanar).
+Vec3 profile_normal(const PHedron& p, const Points& v, std::size_t row) {
+  const GridTopology& g = p.topology();
+  const Vec3& origin = v[g.index(row, 0)];
+  Vec3 best = Vec3::Zero();
+  for (std::size_t a = 1; a < g.columns(); ++a) {
+    for (std::size_t b = a + 1; b < g.columns(); ++b) {
+      const Vec3 c = (v[g.index(row, a)] - origin).cross(v[g.index(row, b)] - origin);
+      if (c.norm() > best.norm()) best = c;
+    }
+  }
+  return best.normalized();
+}
+
+/// Largest distance of a profile vertex at t* from its input profile plane pi_i.
+double profile_plane_deviation(const PHedron& p, const Points& v) {
+  const ControlPolylines& in = p.input();
+  double worst = 0;
+  for (std::size_t i = 0; i < p.topology().rows(); ++i) {
+    const Vec3 normal = in.axis.cross(in.directions[i]).normalized();
+    for (std::size_t c = 0; c < p.topology().columns(); ++c) {
+      worst = std::max(worst, std::abs(normal.dot(v[p.topology().index(i, c)] - in.trajectory[i])));
+    }
+  }
+  return worst;
+}
+
+void check_properties(const PHedron& p) {
+  const double size = p.model_size();
+  const double eps = 1e-9 * size;
+  const FlexionInterval& f = p.flexion_interval();
+  CAPTURE(preset_to_json(p.input()).dump());
+  CAPTURE(size, f.lower.t, p.t_star(), f.upper.t);
+  REQUIRE(f.lower.t < p.t_star());
+  REQUIRE(p.t_star() < f.upper.t);
+
+  // The input is reproduced at t*: trajectory, profile planes, apex heights.
+  const Points at_star = p.evaluate(p.t_star());
+  double trajectory_error = 0;
+  for (std::size_t i = 0; i < p.topology().rows(); ++i) {
+    trajectory_error = std::max(trajectory_error, (at_star[p.topology().index(i, 1)] - p.input().trajectory[i]).norm());
+  }
+  CHECK(trajectory_error <= eps);
+  CHECK(profile_plane_deviation(p, at_star) <= eps);
+  const std::vector<double> heights = p.apex_heights(p.t_star());
+  for (std::size_t j = 0; j < heights.size(); ++j) CHECK(std::abs(heights[j] - p.input().apex_heights[j]) <= eps);
+  const double moving = p.input().apex_heights[p.motion_case() == MotionCase::a ? 0 : 1];
+  CHECK(p.t_star() == moving);
+
+  // Planar and isometric over the interval (50 samples, both ends included).
+  CheckOptions options;
+  options.samples = 50;
+  const IntervalCheckReport report = check_over_interval(p, options);
+  CAPTURE(report.to_json().dump());
+  CHECK(report.planarity.value <= eps);
+  CHECK(report.isometry.value <= eps);
+  CHECK(report.reproduction <= eps);
+
+  // Each end is the last double at which the motion is real, and there the
+  // profile planes of the causing strip coincide (parallel in the general net):
+  // the sine of their angle is sqrt(margin), 0 up to the rounding of t.
+  for (const FlexionLimit& end : {f.lower, f.upper}) {
+    CAPTURE(end.t, end.strip);
+    const double outward = std::nextafter(end.t, end.t < p.t_star() ? -INFINITY : INFINITY);
+    const StripMargin at_end = p.margin(end.t);
+    CHECK(end.strip >= 1);
+    CHECK(at_end.value >= 0.0);
+    CHECK(at_end.value <= 1e-6);
+    CHECK(p.margin(outward).value < 0.0);
+    const Points v = p.evaluate(end.t);
+    const double sine =
+        profile_normal(p, v, end.strip - 1).cross(profile_normal(p, v, end.strip)).norm();
+    CHECK(sine <= std::sqrt(at_end.value) + 1e-6);
+  }
+}
+
+/// Constructs a P-hedron from random inputs of the shape. Draws that the
+/// validation rejects, and draws whose t* lies within 1e-5 of the model size of
+/// a flexion limit (positions are ill-conditioned there: dV/dt is unbounded;
+/// the edge-case tests cover them), are drawn again and counted.
+std::optional<PHedron> construct(std::mt19937_64& rng, const RandomInputShape& shape, int& redrawn) {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    try {
+      PHedron p(random_input(rng, shape));
+      const FlexionInterval& f = p.flexion_interval();
+      if (std::min(p.t_star() - f.lower.t, f.upper.t - p.t_star()) >= 1e-5 * p.model_size()) return p;
+    } catch (const InvalidInputError&) {
+    }
+    ++redrawn;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+TEST_CASE("random P-hedra: reproduced at t*, planar and isometric over the interval, limits at coinciding planes",
+          "[properties]") {
+  std::mt19937_64 rng(20261122);
+  int constructed = 0, redrawn = 0;
+  for (std::size_t k = 0; k < 240; ++k) {
+    RandomInputShape shape;
+    shape.profile_vertices = 2 + k % 11;               // n = 2..12
+    shape.strips = 1 + (k * 7) % 50;                    // m = 1..50
+    if (k % 24 == 0) shape.strips = 50;
+    shape.smooth = k % 2 == 0;
+    CAPTURE(k, shape.profile_vertices, shape.strips);
+    const std::optional<PHedron> p = construct(rng, shape, redrawn);
+    REQUIRE(p.has_value());
+    check_properties(*p);
+    ++constructed;
+  }
+  CHECK(constructed == 240);
+  WARN("drawn again (rejected or t* near a limit): " << redrawn);
+}
+
+TEST_CASE("every sign pattern for n = 2..6", "[properties]") {
+  std::mt19937_64 rng(7);
+  int redrawn = 0;
+  for (std::size_t n = 2; n <= 6; ++n) {
+    for (std::size_t pattern = 0; pattern < (std::size_t{1} << (n - 1)); ++pattern) {
+      RandomInputShape shape;
+      shape.profile_vertices = n;
+      shape.strips = 3 + pattern % 9;
+      shape.signs = phedra::test::sign_pattern(n, pattern);
+      shape.smooth = pattern % 2 == 1;
+      CAPTURE(n, pattern);
+      const std::optional<PHedron> p = construct(rng, shape, redrawn);
+      REQUIRE(p.has_value());
+      CHECK(p->input().signs == shape.signs);
+      check_properties(*p);
+    }
+  }
+}
+
+TEST_CASE("the axial placement (apex line = z-axis) and random placements agree up to the rigid motion",
+          "[properties]") {
+  // Same draw, placed twice: interval ends move by the height shift only.
+  for (std::uint64_t seed = 1; seed <= 20; ++seed) {
+    RandomInputShape axial_shape;
+    axial_shape.random_placement = false;
+    axial_shape.strips = 8;
+    axial_shape.profile_vertices = 5;
+    std::mt19937_64 a(seed), b(seed);
+    RandomInputShape placed_shape = axial_shape;
+    placed_shape.random_placement = true;
+    ControlPolylines axial_input, placed_input;
+    try {
+      axial_input = random_input(a, axial_shape);
+      placed_input = random_input(b, placed_shape);
+      const PHedron axial(axial_input);
+      const PHedron placed(placed_input);
+      const double shift = placed.t_star() - axial.t_star();
+      CHECK(placed.flexion_interval().lower.t - shift == Approx(axial.flexion_interval().lower.t).margin(1e-9));
+      CHECK(placed.flexion_interval().upper.t - shift == Approx(axial.flexion_interval().upper.t).margin(1e-9));
+      CHECK(placed.motion_case() == axial.motion_case());
+    } catch (const InvalidInputError&) {
+      // a rejected draw is rejected in both placements
+      CHECK_THROWS_AS(PHedron(placed_input), InvalidInputError);
+    }
+  }
+}
