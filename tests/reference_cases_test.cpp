@@ -53,3 +53,18 @@ TEST_CASE("open reference cases: t*, case, interval and positions", "[reference]
     }
   }
 }
+
+TEST_CASE("every reference case loads unchanged; t*, case and interval ends agree (tubes too)", "[reference]") {
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(PHEDRA_TEST_DATA_DIR) / "cases")) {
+    if (entry.path().extension() != ".json") continue;
+    CAPTURE(entry.path().filename().string());
+    const json c = load_case(entry.path().stem().string());
+    const PHedron p(preset_from_json(c["preset"]));
+    const json& e = c["expected"];
+    CHECK(p.t_star() == e["t_star"].get<double>());
+    CHECK(std::string(to_string(p.motion_case())) == e["case"].get<std::string>());
+    const double lo = e["flexion_interval"][0], hi = e["flexion_interval"][1];
+    CHECK(std::abs(p.flexion_interval().lower.t - lo) <= 1e-12 * std::max(1.0, std::abs(lo)) * 100);
+    CHECK(std::abs(p.flexion_interval().upper.t - hi) <= 1e-12 * std::max(1.0, std::abs(hi)) * 100);
+  }
+}

@@ -1,0 +1,168 @@
+// The `phedra` command, run in-process: outputs, exit codes and files.
+
+#include "cli.h"
+#include "phedra/phedron.h"
+#include "phedra/preset.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace phedra;
+using Catch::Matchers::Contains;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int code;
+  std::string out;
+  std::string err;
+};
+
+Run phedra_cli(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int code = cli::run(args, out, err);
+  return {code, out.str(), err.str()};
+}
+
+const std::string data = PHEDRA_TEST_DATA_DIR;
+const std::string presets = PHEDRA_PRESETS_DIR;
+
+fs::path scratch_directory() {
+  const fs::path dir = fs::temp_directory_path() / ("phedra-cli-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<fs::path> files_in(const fs::path& dir) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(dir)) files.push_back(entry.path());
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("info prints the figures, --json has the documented keys", "[cli]") {
+  const std::string preset = data + "/cases/open-all-plus.json";
+  const Run text = phedra_cli({"info", preset});
+  CHECK(text.code == 0);
+  CHECK_THAT(text.out, Contains("t*:                -1.2979729609766277"));
+  CHECK_THAT(text.out, Contains("flexion interval:"));
+  const Run j = phedra_cli({"info", preset, "--json"});
+  REQUIRE(j.code == 0);
+  const json info = json::parse(j.out);
+  CHECK(info["t_star"].get<double>() == -1.2979729609766277);
+  CHECK(info["case"] == "a");
+  CHECK(info["flexion_interval"].size() == 2);
+  CHECK(info["vertices"] == 30);
+  CHECK(info["faces"] == 20);
+  CHECK(info["planarity"].get<double>() < 1e-9);
+  CHECK(info["isometry"].get<double>() < 1e-9);
+}
+
+TEST_CASE("sample: labels, faces, samples in command-line order; fractions 0 and 1 are the limits", "[cli]") {
+  const std::string preset = presets + "/default.json";
+  const PHedron p(load_preset(preset));
+  const Run r = phedra_cli({"sample", preset, "--fraction", "1", "--t", "1.0", "--fraction", "0"});
+  REQUIRE(r.code == 0);
+  const json s = json::parse(r.out);
+  REQUIRE(s["samples"].size() == 3);
+  CHECK(s["samples"][0]["t"].get<double>() == p.flexion_interval().upper.t);
+  CHECK(s["samples"][1]["t"].get<double>() == 1.0);
+  CHECK(s["samples"][2]["t"].get<double>() == p.flexion_interval().lower.t);
+  CHECK(s["labels"].size() == p.vertex_count());
+  CHECK(s["labels"][0] == json::array({0, 0}));
+  CHECK(s["labels"][p.topology().columns() + 1] == json::array({1, 1}));
+  CHECK(s["faces"].size() == p.topology().faces().size());
+  const Points v = p.evaluate(1.0);
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    for (int c = 0; c < 3; ++c) CHECK(s["samples"][1]["vertices"][k][c].get<double>() == v[k][c]);
+  }
+  const Run count = phedra_cli({"sample", preset, "--count", "5"});
+  CHECK(json::parse(count.out)["samples"].size() == 5);
+}
+
+TEST_CASE("sample -o writes the file atomically and never over the input", "[cli]") {
+  const fs::path dir = scratch_directory();
+  const std::string preset = presets + "/default.json";
+  const fs::path out = dir / "samples.json";
+  CHECK(phedra_cli({"sample", preset, "--count", "3", "-o", out.string()}).code == 0);
+  CHECK(json::parse(std::ifstream(out))["samples"].size() == 3);
+
+  // A missing directory: exit 3, nothing written.
+  const Run missing = phedra_cli({"sample", preset, "--t", "1", "-o", (dir / "no" / "such" / "x.json").string()});
+  CHECK(missing.code == 3);
+  CHECK_THAT(missing.err, Contains("does not exist"));
+
+  // The input itself: refused, unchanged.
+  const fs::path copy = dir / "preset.json";
+  fs::copy_file(preset, copy, fs::copy_options::overwrite_existing);
+  const auto before = fs::file_size(copy);
+  const Run over = phedra_cli({"sample", copy.string(), "--t", "1", "-o", copy.string()});
+  CHECK(over.code == 3);
+  CHECK_THAT(over.err, Contains("is the input file"));
+  CHECK(fs::file_size(copy) == before);
+
+  // A t outside the interval: exit 2, no file, no temporary left behind.
+  const fs::path bad = dir / "bad.json";
+  const Run outside = phedra_cli({"sample", preset, "--t", "100", "-o", bad.string()});
+  CHECK(outside.code == 2);
+  CHECK_THAT(outside.err, Contains("outside the flexion interval"));
+  CHECK_FALSE(fs::exists(bad));
+  for (const fs::path& f : files_in(dir)) CHECK(f.extension() != ".tmp");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("check passes on the shipped presets and the open reference cases", "[cli]") {
+  for (const auto& entry : fs::directory_iterator(presets)) {
+    if (entry.path().extension() != ".json" || entry.path().filename().string().find("schema") != std::string::npos)
+      continue;
+    CAPTURE(entry.path());
+    const Run r = phedra_cli({"check", entry.path().string(), "--samples", "100"});
+    CHECK(r.code == 0);
+    CHECK_THAT(r.out, Contains("PASS"));
+  }
+  const Run j = phedra_cli({"check", data + "/cases/open-mixed-tilted-axis.json", "--json"});
+  CHECK(j.code == 0);
+  const json report = json::parse(j.out);
+  CHECK(report["passed"] == true);
+  CHECK(report["samples"] == 201);
+  CHECK(report["planarity"]["relative"].get<double>() < 1e-9);
+}
+
+TEST_CASE("check exits 1 when a figure exceeds the tolerance", "[cli]") {
+  const Run r = phedra_cli({"check", presets + "/default.json", "--tolerance", "1e-30"});
+  CHECK(r.code == 1);
+  CHECK_THAT(r.out, Contains("FAIL"));
+}
+
+TEST_CASE("bad input and bad usage: clear message, exit 2; unreadable file: exit 3", "[cli]") {
+  const fs::path dir = scratch_directory();
+  const fs::path bad = dir / "bad.json";
+  std::ofstream(bad) << "{\"trajectory\": [[1,0,0],[2,0,0]],\n \"directions\": [[1,0,0],[0,1,0]], \"apex_heights\": "
+                        "[1,2,3], \"signs\": \"+-\"}";
+  const Run r = phedra_cli({"info", bad.string()});
+  CHECK(r.code == 2);
+  CHECK_THAT(r.err, Contains(bad.string() + ": signs: expected 1 signs"));
+  CHECK(phedra_cli({"info", (dir / "missing.json").string()}).code == 3);
+  CHECK(phedra_cli({"info"}).code == 2);
+  CHECK(phedra_cli({"frobnicate"}).code == 2);
+  CHECK(phedra_cli({"sample", presets + "/default.json"}).code == 2);
+  CHECK(phedra_cli({"sample", presets + "/default.json", "--fraction", "2"}).code == 2);
+  CHECK(phedra_cli({"check", presets + "/default.json", "--samples", "1"}).code == 2);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("--help of every command exits 0 and describes it", "[cli]") {
+  CHECK_THAT(phedra_cli({"--help"}).out, Contains("Exit codes"));
+  CHECK_THAT(phedra_cli({"info", "--help"}).out, Contains("--json"));
+  CHECK_THAT(phedra_cli({"sample", "--help"}).out, Contains("--fraction"));
+  CHECK_THAT(phedra_cli({"check", "--help"}).out, Contains("--samples"));
+  CHECK(phedra_cli({"check", "--help"}).code == 0);
+  CHECK_THAT(phedra_cli({"--version"}).out, Contains("phedra 0."));
+}
