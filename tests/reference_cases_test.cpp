@@ -22,8 +22,9 @@ json load_case(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("open reference cases: t*, case, interval and positions", "[reference]") {
-  for (const std::string name : {"open-all-plus", "open-all-minus", "open-mixed-tilted-axis"}) {
+TEST_CASE("reference cases: t*, case, interval and positions (open P-hedra and tubes)", "[reference]") {
+  for (const std::string name : {"open-all-plus", "open-all-minus", "open-mixed-tilted-axis", "tube-parallelogram",
+                                 "tube-antiparallelogram", "tube-antiparallelogram-asymmetric"}) {
     CAPTURE(name);
     const json c = load_case(name);
     const PHedron p(preset_from_json(c["preset"]));
@@ -32,6 +33,7 @@ TEST_CASE("open reference cases: t*, case, interval and positions", "[reference]
     const double scale = std::max(1.0, std::abs(e["t_star"].get<double>()));
     CHECK(p.t_star() == Approx(e["t_star"].get<double>()).margin(1e-12 * scale));
     CHECK(std::string(to_string(p.motion_case())) == e["case"].get<std::string>());
+    CHECK(p.closed() == e["closed"].get<bool>());
     const double lo = e["flexion_interval"][0], hi = e["flexion_interval"][1];
     CHECK(std::abs(p.flexion_interval().lower.t - lo) <= 1e-9 * size);
     CHECK(std::abs(p.flexion_interval().upper.t - hi) <= 1e-9 * size);
@@ -49,7 +51,25 @@ TEST_CASE("open reference cases: t*, case, interval and positions", "[reference]
           worst = std::max(worst, (v[p.topology().index(i, col)] - expected).norm());
         }
       }
+      // The asymmetric anti-parallelogram opens as it flexes: its expected positions
+      // are those of the open chain V_{i,0..3}, which stay exact.
       CHECK(worst <= 1e-9 * size);
+    }
+    if (p.closed()) {
+      // Largest closure gap over 101 samples of the interval, as in the reference.
+      double gap = 0;
+      Points v(p.vertex_count());
+      for (int k = 0; k <= 100; ++k) {
+        ClosureGap g;
+        p.evaluate(p.t_at_fraction(k / 100.0), v, &g);
+        gap = std::max(gap, g.value);
+      }
+      const double expected = e["max_closure_gap"];
+      if (expected > 1e-6 * size) {
+        CHECK(gap == Approx(expected).epsilon(1e-6));
+      } else {
+        CHECK(gap <= 1e-9 * size);
+      }
     }
   }
 }

@@ -35,13 +35,6 @@ Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
   moving_radius_ = std::hypot(v00.x(), moving - v00.z());
   other_radius_ = std::hypot(v00.x(), other - v00.z());
   other_sign_ = other < 0.0 ? -1.0 : 1.0;
-  const std::size_t n = axial.columns;
-  ratios_.resize(n - 1);
-  mirror_.resize(n - 1);
-  for (std::size_t j = 0; j + 1 < n; ++j) {
-    ratios_[j] = axial.ratio(0, j);
-    mirror_[j] = in.signs[j] == Sign::plus ? 1.0 : -1.0;
-  }
 }
 
 bool Linkage::start(double t, LinkageStart& out, double& margin) const {
@@ -60,18 +53,6 @@ bool Linkage::start(double t, LinkageStart& out, double& margin) const {
     out.s0 = other;
   }
   return true;
-}
-
-void Linkage::complete(const LinkageStart& start, double* s, Vec3* row) const {
-  s[0] = start.s0;
-  s[1] = start.s1;
-  row[0] = Vec3(start.x, 0.0, 0.0);
-  for (std::size_t j = 0; j < ratios_.size(); ++j) {
-    const double rho = ratios_[j];
-    const double c = s[j + 1];
-    row[j + 1] = Vec3(rho * row[j].x(), 0.0, c + rho * (row[j].z() - c));
-    s[j + 2] = row[j + 1].z() + rho * mirror_[j] * (s[j] - row[j].z());
-  }
 }
 
 }  // namespace phedra

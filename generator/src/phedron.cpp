@@ -1,10 +1,9 @@
 #include "phedra/phedron.h"
 
-#include "phedra/axial_net.h"
+#include "phedra/closed_profile.h"
 #include "phedra/errors.h"
 #include "phedra/geometry_checks.h"
 #include "phedra/number_format.h"
-#include "phedra/parallel_net.h"
 #include "phedra/tolerances.h"
 #include "phedra/validation.h"
 
@@ -29,20 +28,40 @@ CanonicalInput to_canonical(const ControlPolylines& in, const CanonicalFrame& fr
   return c;
 }
 
-/// The constructed general net at t* with its boundary columns, user frame.
-Points reference_net(const AxialNet& axial, const ParallelNet& parallel, const CanonicalInput& in,
-                     const CanonicalFrame& frame) {
-  const std::size_t n = axial.columns;
-  const Vec3 first(0, 0, in.heights.front()), last(0, 0, in.heights.back());
-  Points out;
-  out.reserve(axial.rows * (n + 2));
-  for (std::size_t i = 0; i < axial.rows; ++i) {
-    const Vec3* g = &parallel.vertices[i * n];
-    out.push_back(frame.point_to_user(g[0] + (first - axial.vertex(i, 0))));
-    for (std::size_t j = 0; j < n; ++j) out.push_back(frame.point_to_user(g[j]));
-    out.push_back(frame.point_to_user(g[n - 1] + (last - axial.vertex(i, n - 1))));
+/// Writes one row of the general net (canonical) into the output grid (user frame).
+class RowWriter {
+ public:
+  RowWriter(const CanonicalFrame& frame, bool closed, std::size_t n, std::span<Vec3> out)
+      : to_user_(frame.rotation().transpose()), origin_(frame.origin()), closed_(closed), n_(n), out_(out) {}
+
+  void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
+    if (closed_) {
+      Vec3* row = out_.data() + i * (n_ - 1);
+      for (std::size_t c = 0; c + 1 < n_; ++c) row[c] = user(general[c]);
+      return;
+    }
+    Vec3* row = out_.data() + i * (n_ + 2);
+    row[0] = user(general[0] + (Vec3(0, 0, s[0]) - axial[0]));
+    for (std::size_t j = 0; j < n_; ++j) row[j + 1] = user(general[j]);
+    row[n_ + 1] = user(general[n_ - 1] + (Vec3(0, 0, s[n_]) - axial[n_ - 1]));
   }
-  return out;
+
+ private:
+  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
+  Mat3 to_user_;
+  Vec3 origin_;
+  bool closed_;
+  std::size_t n_;
+  std::span<Vec3> out_;
+};
+
+ClosureGap closure_gap_of(const Points& general, std::size_t rows, std::size_t n) {
+  ClosureGap gap;
+  for (std::size_t i = 0; i < rows; ++i) {
+    const double d = (general[i * n + n - 1] - general[i * n]).norm();
+    if (!(d <= gap.value)) gap = {d, i};
+  }
+  return gap;
 }
 
 }  // namespace
@@ -50,16 +69,21 @@ Points reference_net(const AxialNet& axial, const ParallelNet& parallel, const C
 PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   validate(input_);
   frame_ = CanonicalFrame(input_);
-  const CanonicalInput canonical = to_canonical(input_, frame_);
-  const AxialNet axial = build_axial_net(canonical);
-  const ParallelNet parallel = build_parallel_net(axial, canonical.trajectory);
-  n_ = axial.columns;
-  topology_ = GridTopology(axial.rows, n_ + 2, false);
-  linkage_ = Linkage(axial, canonical);
-  chain_ = StripChain(axial, canonical.heights[0], canonical.heights[1]);
-  ratios_ = axial.ratios;
-  transversal_scales_ = parallel.transversal_scales;
-  reference_ = reference_net(axial, parallel, canonical, frame_);
+  canonical_ = to_canonical(input_, frame_);
+  axial_ = build_axial_net(canonical_);
+  parallel_ = build_parallel_net(axial_, canonical_.trajectory);
+  motion_ = NetMotion(axial_, parallel_, canonical_.signs);
+  linkage_ = Linkage(axial_, canonical_);
+  chain_ = StripChain(axial_, canonical_.heights[0], canonical_.heights[1]);
+  closed_ = has_closed_profile(input_);
+  const std::size_t n = motion_.columns();
+  topology_ = GridTopology(axial_.rows, closed_ ? n - 1 : n + 2, closed_);
+
+  reference_.assign(vertex_count(), Vec3::Zero());
+  RowWriter writer(frame_, closed_, n, reference_);
+  for (std::size_t i = 0; i < axial_.rows; ++i) {
+    writer.write(i, canonical_.heights.data(), &axial_.vertices[i * n], &parallel_.vertices[i * n]);
+  }
   for (const Vec3& p : reference_) {
     if (!p.allFinite()) {
       throw InvalidInputError("", "the construction overflows (a vertex is not finite): the input is too "
@@ -67,6 +91,15 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
     }
   }
   model_size_ = bounding_box_diagonal(reference_);
+  if (closed_) {
+    const ClosureGap gap = closure_gap_of(parallel_.vertices, axial_.rows, n);
+    if (!(gap.value <= tolerance::check_relative * model_size_)) {
+      throw InvalidInputError("apex_heights", "the profile [" + std::to_string(n - 1) +
+                                                  " sides, heights repeating their first two] does not close at t*: "
+                                                  "gap " + format_number(gap.value) + " at row " +
+                                                  std::to_string(gap.row) + " (MATH.md section 5)");
+    }
+  }
 
   // t is the user's height of the moving apex: t* is that input height exactly, and
   // every t (search, checks, evaluate) goes through the same conversion.
@@ -107,16 +140,46 @@ StripMargin PHedron::canonical_margin(double tc) const {
 
 StripMargin PHedron::margin(double t) const { return canonical_margin(canonical_t(t)); }
 
-std::vector<double> PHedron::apex_heights(double t) const {
+template <class RowSink>
+void PHedron::run_rows(double t, RowSink&& sink) const {
   if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
+  const std::size_t n = motion_.columns();
   LinkageStart start;
   double margin;
-  linkage_.start(canonical_t(t), start, margin);
-  std::vector<double> s(n_ + 1);
-  Points row(n_);
-  linkage_.complete(start, s.data(), row.data());
-  for (double& h : s) h = frame_.height_to_user(h);
-  return s;
+  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
+  std::vector<double> s(n + 1);
+  Points previous_a(n), current_a(n), previous_g(n), current_g(n);
+  motion_.complete_first_row(start.s0, start.s1, Vec3(start.x, 0, 0), s.data(), current_a.data());
+  current_g = current_a;
+  sink(std::size_t{0}, s.data(), current_a.data(), current_g.data());
+  for (std::size_t i = 1; i < motion_.rows(); ++i) {
+    std::swap(previous_a, current_a);
+    std::swap(previous_g, current_g);
+    if (!chain_.advance(i, s[0], s[1], previous_a[0], current_a[0], margin, true)) {
+      throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
+                                          format_number(t) + " inside the flexion interval");
+    }
+    motion_.fill_row(i, s.data(), current_a.data());
+    motion_.advance_general_row(i, previous_a.data(), current_a.data(), previous_g.data(), current_g.data());
+    sink(i, s.data(), current_a.data(), current_g.data());
+  }
+}
+
+void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
+  if (out.size() != vertex_count()) {
+    throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
+                                        std::to_string(vertex_count()));
+  }
+  const std::size_t n = motion_.columns();
+  const RowWriter writer(frame_, closed_, n, out);
+  if (gap) *gap = {};
+  run_rows(t, [&](std::size_t i, const double* s, const Vec3* axial, const Vec3* general) {
+    writer.write(i, s, axial, general);
+    if (gap && closed_) {
+      const double d = (general[n - 1] - general[0]).norm();
+      if (!(d <= gap->value)) *gap = {d, i};
+    }
+  });
 }
 
 Points PHedron::evaluate(double t) const {
@@ -125,51 +188,25 @@ Points PHedron::evaluate(double t) const {
   return out;
 }
 
-void PHedron::evaluate(double t, std::span<Vec3> out) const {
-  if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
-  if (out.size() != vertex_count()) {
-    throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
-                                        std::to_string(vertex_count()));
-  }
-  const std::size_t n = n_;
-  const std::size_t columns = n + 2;
-  LinkageStart start;
-  double margin;
-  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
-  std::vector<double> s(n + 1);
-  Points previous_a(n), current_a(n), previous_g(n), current_g(n);
-  linkage_.complete(start, s.data(), current_a.data());
-  current_g = current_a;
+void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes) const {
+  const std::size_t n = motion_.columns();
+  axial.resize(motion_.rows() * n);
+  general.resize(motion_.rows() * n);
+  apexes.resize(n + 1);
+  run_rows(t, [&](std::size_t i, const double* s, const Vec3* a, const Vec3* g) {
+    std::copy(a, a + n, axial.begin() + i * n);
+    std::copy(g, g + n, general.begin() + i * n);
+    if (i == 0) std::copy(s, s + n + 1, apexes.begin());
+  });
+}
 
-  const Mat3 to_user = frame_.rotation().transpose();
-  const Vec3 origin = frame_.origin();
-  const Vec3 first_apex(0, 0, s.front());
-  const Vec3 last_apex(0, 0, s.back());
-  auto write_row = [&](std::size_t i) {
-    Vec3* row = out.data() + i * columns;
-    row[0] = origin + to_user * (current_g[0] + (first_apex - current_a[0]));
-    for (std::size_t j = 0; j < n; ++j) row[j + 1] = origin + to_user * current_g[j];
-    row[n + 1] = origin + to_user * (current_g[n - 1] + (last_apex - current_a[n - 1]));
-  };
-  write_row(0);
-  const std::size_t rows = topology_.rows();
-  for (std::size_t i = 1; i < rows; ++i) {
-    std::swap(previous_a, current_a);
-    std::swap(previous_g, current_g);
-    if (!chain_.advance(i, s[0], s[1], previous_a[0], current_a[0], margin, true)) {
-      throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
-                                          format_number(t) + " inside the flexion interval");
-    }
-    const double* rho = &ratios_[i * (n - 1)];
-    for (std::size_t j = 0; j + 1 < n; ++j) {
-      const double c = s[j + 1];
-      const Vec3& a = current_a[j];
-      current_a[j + 1] = Vec3(rho[j] * a.x(), rho[j] * a.y(), c + rho[j] * (a.z() - c));
-    }
-    const double* q = &transversal_scales_[i * n];
-    for (std::size_t j = 0; j < n; ++j) current_g[j] = previous_g[j] + q[j] * (current_a[j] - previous_a[j]);
-    write_row(i);
-  }
+std::vector<double> PHedron::apex_heights(double t) const {
+  std::vector<double> heights;
+  run_rows(t, [&](std::size_t i, const double* s, const Vec3*, const Vec3*) {
+    if (i == 0) heights.assign(s, s + motion_.columns() + 1);
+  });
+  for (double& h : heights) h = frame_.height_to_user(h);
+  return heights;
 }
 
 }  // namespace phedra

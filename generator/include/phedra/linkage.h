@@ -1,6 +1,7 @@
 #pragma once
 // The planar linkage L_0 in the profile plane pi_0 (MATH.md section 4, paper
-// section 3.1): its motion parameter, the case (a)/(b) and the apexes at t.
+// section 3.1): its motion parameter, the case (a)/(b), and S_0, S_1, V_{0,0} at t
+// (NetMotion::complete_first_row continues the recursion to the other apexes).
 
 #include "phedra/axial_net.h"
 
@@ -35,17 +36,11 @@ class Linkage {
   /// `margin` gets x^2 / r^2 of the moving bar.
   bool start(double t, LinkageStart& out, double& margin) const;
 
-  /// Given the start, fills apex heights s[0..n] and row 0 of the axial net at t
-  /// (`row` has n entries) by the L_0 recursion.
-  void complete(const LinkageStart& start, double* apexes, Vec3* row) const;
-
  private:
   MotionCase case_ = MotionCase::a;
   double moving_radius_ = 0.0;      ///< |V_{0,0} - S_moving|
   double other_radius_ = 0.0;       ///< |V_{0,0} - S_other|
   double other_sign_ = 1.0;         ///< sgn of the other apex's z
-  std::vector<double> ratios_;      ///< rho_{0,j}
-  std::vector<double> mirror_;      ///< +1 for '+', -1 for '-' (M+/M- on z)
 };
 
 }  // namespace phedra

@@ -1,12 +1,17 @@
 #pragma once
 // A general P-hedron from three control polylines: construction (everything
-// that does not depend on t) and its isometric deformation evaluate(t).
+// that does not depend on t) and its isometric deformation evaluate(t). Open
+// P-hedra have boundary columns; inputs with a closed profile (closed_profile.h)
+// are tubes with cyclic columns.
 
+#include "phedra/axial_net.h"
 #include "phedra/canonical_frame.h"
 #include "phedra/control_polylines.h"
 #include "phedra/flexion_interval.h"
 #include "phedra/grid_topology.h"
 #include "phedra/linkage.h"
+#include "phedra/net_motion.h"
+#include "phedra/parallel_net.h"
 #include "phedra/strip_chain.h"
 
 #include <span>
@@ -14,18 +19,28 @@
 
 namespace phedra {
 
+/// The largest gap |V_{i,N}(t) - V_{i,0}(t)| of a closed profile, and its row.
+struct ClosureGap {
+  double value = 0.0;
+  std::size_t row = 0;
+};
+
 class PHedron {
  public:
   /// Validates the input (validate()) and constructs the axial net, the parallel
   /// net, the motion and the flexion interval. Throws InvalidInputError (naming
-  /// the field and index) for every violated assumption of MATH.md.
+  /// the field and index) for every violated assumption of MATH.md, and for a
+  /// closed profile that does not close at t*.
   explicit PHedron(ControlPolylines input);
 
   const ControlPolylines& input() const { return input_; }
-  /// (m + 1) rows by (n + 2) columns: boundary S_0, V_{i,0..n-1}, boundary S_n.
+  /// Open: (m + 1) rows by (n + 2) columns: boundary S_0, V_{i,0..n-1}, boundary S_n.
+  /// Closed: (m + 1) rows by N = n - 1 cyclic columns V_{i,0..N-1}.
   const GridTopology& topology() const { return topology_; }
+  bool closed() const { return closed_; }
   std::size_t vertex_count() const { return topology_.vertex_count(); }
-  std::size_t profile_vertex_count() const { return n_; }
+  /// n: vertices per profile of the construction (a closed profile's last one repeats its first).
+  std::size_t profile_vertex_count() const { return motion_.columns(); }
 
   /// The motion parameter t is the axis coordinate (user frame) of the moving
   /// apex: S_0 in case (a), S_1 in case (b).
@@ -43,10 +58,16 @@ class PHedron {
 
   /// Vertex positions at t in the user frame (topology order); `out` has
   /// vertex_count() entries. The motion keeps the axis, the plane pi_0 and the
-  /// axis coordinate of V_{0,0} fixed. Throws OutOfIntervalError outside the
+  /// axis coordinate of V_{0,0} fixed. For a closed profile, `gap` (if given)
+  /// gets the largest closure gap. Throws OutOfIntervalError outside the
   /// flexion interval.
-  void evaluate(double t, std::span<Vec3> out) const;
+  void evaluate(double t, std::span<Vec3> out, ClosureGap* gap = nullptr) const;
   Points evaluate(double t) const;
+
+  /// The axial and the general net at t in the canonical frame (rows x n, row-major,
+  /// no boundary columns) and the apex heights s_0..s_n (canonical): what the
+  /// members of an assembly are seeded on.
+  void evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes) const;
 
   /// Heights <S_j(t), axis> (user frame) of the apexes S_0..S_n at t.
   std::vector<double> apex_heights(double t) const;
@@ -56,19 +77,29 @@ class PHedron {
   StripMargin margin(double t) const;
 
   const CanonicalFrame& frame() const { return frame_; }
+  /// The input in the canonical frame, the axial and the parallel net at t*.
+  const CanonicalInput& canonical_input() const { return canonical_; }
+  const AxialNet& axial_net() const { return axial_; }
+  const ParallelNet& parallel_net() const { return parallel_; }
+  const NetMotion& motion() const { return motion_; }
 
  private:
   double canonical_t(double t) const { return frame_.height_to_canonical(t); }
   StripMargin canonical_margin(double tc) const;
+  /// Runs the motion at t row by row: sink(i, apexes, axial_row, general_row), canonical frame.
+  template <class RowSink>
+  void run_rows(double t, RowSink&& sink) const;
 
   ControlPolylines input_;
   CanonicalFrame frame_;
-  std::size_t n_ = 0;
-  GridTopology topology_;
+  CanonicalInput canonical_;
+  AxialNet axial_;
+  ParallelNet parallel_;
+  NetMotion motion_;
   Linkage linkage_;
   StripChain chain_;
-  std::vector<double> ratios_;             ///< rho_{i,j}, (m+1) x (n-1)
-  std::vector<double> transversal_scales_; ///< parallel-net factors, (m+1) x n
+  bool closed_ = false;
+  GridTopology topology_;
   Points reference_;
   double model_size_ = 0.0;
   double t_star_ = 0.0;

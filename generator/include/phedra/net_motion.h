@@ -1,0 +1,54 @@
+#pragma once
+// The per-row recursions of the motion (MATH.md sections 3 and 4), shared by a
+// P-hedron and by the members of an assembly: once column 0 of the axial net
+// and the first two apexes are known at t, everything else follows from
+// constants fixed at t*.
+
+#include "phedra/axial_net.h"
+#include "phedra/parallel_net.h"
+
+#include <vector>
+
+namespace phedra {
+
+class NetMotion {
+ public:
+  NetMotion() = default;
+  /// Constants from the axial and parallel nets at t*.
+  NetMotion(const AxialNet& axial, const ParallelNet& parallel, const std::vector<Sign>& signs);
+
+  std::size_t rows() const { return rows_; }
+  std::size_t columns() const { return columns_; }
+
+  /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
+  /// s[0], s[1] and the row's first vertex (in the plane pi_0).
+  void complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const;
+
+  /// Row i of the axial net from row[0] and the apexes: A[i][j+1] = S_{j+1} + rho (A[i][j] - S_{j+1}).
+  void fill_row(std::size_t i, const double* s, Vec3* row) const {
+    const double* rho = &ratios_[i * (columns_ - 1)];
+    for (std::size_t j = 0; j + 1 < columns_; ++j) {
+      const double c = s[j + 1];
+      const Vec3& a = row[j];
+      row[j + 1] = Vec3(rho[j] * a.x(), rho[j] * a.y(), c + rho[j] * (a.z() - c));
+    }
+  }
+
+  /// Row i (>= 1) of the general net: G[i][j] = G[i-1][j] + q_{i,j} (A[i][j] - A[i-1][j]),
+  /// for columns first..n-1 (first = 1 when column 0 is given).
+  void advance_general_row(std::size_t i, const Vec3* previous_axial, const Vec3* axial, const Vec3* previous_general,
+                           Vec3* general, std::size_t first = 0) const {
+    const double* q = &scales_[i * columns_];
+    for (std::size_t j = first; j < columns_; ++j) {
+      general[j] = previous_general[j] + q[j] * (axial[j] - previous_axial[j]);
+    }
+  }
+
+ private:
+  std::size_t rows_ = 0, columns_ = 0;
+  std::vector<double> ratios_;  ///< rho_{i,j}, rows x (n - 1)
+  std::vector<double> scales_;  ///< parallel-net transversal scale factors, rows x n
+  std::vector<double> mirror_;  ///< +1 for '+', -1 for '-' (M+/M- on z), n - 1
+};
+
+}  // namespace phedra
