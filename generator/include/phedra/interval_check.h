@@ -1,8 +1,9 @@
 #pragma once
-// Planarity and isometry over the whole flexion interval (dense samples, both
-// ends and t*), with the worst value and where it occurs. Shared by
-// `phedra check`, `phedra info` and the tests.
+// Planarity, isometry and (for tubes) closure over the whole flexion interval
+// (dense samples, both ends and t*), with the worst value and where it occurs.
+// Shared by `phedra check`, `phedra info` and the tests.
 
+#include "phedra/figure_tracker.h"
 #include "phedra/phedron.h"
 #include "phedra/tolerances.h"
 
@@ -20,13 +21,6 @@ struct CheckOptions {
   double relative_tolerance = tolerance::check_relative;
 };
 
-/// The worst value of one figure over the samples.
-struct WorstCase {
-  double value = 0.0;     ///< absolute length
-  double t = 0.0;         ///< where it occurs
-  std::string location;   ///< which face / segment, in grid labels
-};
-
 struct IntervalCheckReport {
   double model_size = 0.0;
   double tolerance = 0.0;  ///< absolute: relative_tolerance * model_size
@@ -34,6 +28,8 @@ struct IntervalCheckReport {
   std::size_t samples = 0;
   WorstCase planarity;  ///< distance of a quad's 4th vertex from the plane of the others
   WorstCase isometry;   ///< |length(t) - length(t*)| over edges and face diagonals
+  bool closed = false;  ///< a tube: `closure` is meaningful
+  WorstCase closure;    ///< |V_{i,N}(t) - V_{i,0}(t)|
   double reproduction = 0.0;  ///< max |evaluate(t*) - constructed net| (input reproduced at t*)
 
   bool passed() const;
@@ -47,5 +43,14 @@ IntervalCheckReport check_at_t_star(const PHedron& phedron, double relative_tole
 
 /// Checks over the whole flexion interval.
 IntervalCheckReport check_over_interval(const PHedron& phedron, const CheckOptions& options = {});
+
+/// `samples` evenly spaced parameters of [lo, hi], both ends included exactly.
+std::vector<double> interval_samples(double lo, double hi, std::size_t samples);
+
+/// JSON of a worst case: {value, relative, t, where}.
+nlohmann::json worst_case_json(const WorstCase& w, double model_size);
+
+/// "  NAME VALUE (REL of the model size) at t = T, WHERE".
+void print_worst_case(std::ostream& out, const char* name, const WorstCase& w, double model_size);
 
 }  // namespace phedra
