@@ -4,13 +4,14 @@
 
 namespace phedra {
 
-bool has_closed_profile(const ControlPolylines& in) {
-  const auto& z = in.apex_heights;
-  if (z.size() < 5 || in.signs.empty()) return false;
+bool has_closed_profile(const std::vector<double>& z, const std::vector<Sign>& signs) {
+  if (z.size() < 5 || signs.empty()) return false;
   const std::size_t sides = z.size() - 2;
   const bool repeats = z[sides] == z[0] && z[sides + 1] == z[1];
-  const bool uniform = std::all_of(in.signs.begin(), in.signs.end(), [&](Sign s) { return s == in.signs.front(); });
+  const bool uniform = std::all_of(signs.begin(), signs.end(), [&](Sign s) { return s == signs.front(); });
   return repeats && uniform;
 }
+
+bool has_closed_profile(const ControlPolylines& in) { return has_closed_profile(in.apex_heights, in.signs); }
 
 }  // namespace phedra

@@ -3,6 +3,7 @@
 #include "phedra/closed_profile.h"
 #include "phedra/errors.h"
 #include "phedra/geometry_checks.h"
+#include "phedra/net_writer.h"
 #include "phedra/number_format.h"
 #include "phedra/tolerances.h"
 #include "phedra/validation.h"
@@ -28,33 +29,6 @@ CanonicalInput to_canonical(const ControlPolylines& in, const CanonicalFrame& fr
   return c;
 }
 
-/// Writes one row of the general net (canonical) into the output grid (user frame).
-class RowWriter {
- public:
-  RowWriter(const CanonicalFrame& frame, bool closed, std::size_t n, std::span<Vec3> out)
-      : to_user_(frame.rotation().transpose()), origin_(frame.origin()), closed_(closed), n_(n), out_(out) {}
-
-  void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
-    if (closed_) {
-      Vec3* row = out_.data() + i * (n_ - 1);
-      for (std::size_t c = 0; c + 1 < n_; ++c) row[c] = user(general[c]);
-      return;
-    }
-    Vec3* row = out_.data() + i * (n_ + 2);
-    row[0] = user(general[0] + (Vec3(0, 0, s[0]) - axial[0]));
-    for (std::size_t j = 0; j < n_; ++j) row[j + 1] = user(general[j]);
-    row[n_ + 1] = user(general[n_ - 1] + (Vec3(0, 0, s[n_]) - axial[n_ - 1]));
-  }
-
- private:
-  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
-  Mat3 to_user_;
-  Vec3 origin_;
-  bool closed_;
-  std::size_t n_;
-  std::span<Vec3> out_;
-};
-
 ClosureGap closure_gap_of(const Points& general, std::size_t rows, std::size_t n) {
   ClosureGap gap;
   for (std::size_t i = 0; i < rows; ++i) {
@@ -77,10 +51,10 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   chain_ = StripChain(axial_, canonical_.heights[0], canonical_.heights[1]);
   closed_ = has_closed_profile(input_);
   const std::size_t n = motion_.columns();
-  topology_ = GridTopology(axial_.rows, closed_ ? n - 1 : n + 2, closed_);
+  topology_ = GridTopology(axial_.rows, NetWriter::columns(closed_, n), closed_);
 
   reference_.assign(vertex_count(), Vec3::Zero());
-  RowWriter writer(frame_, closed_, n, reference_);
+  NetWriter writer(frame_, closed_, n, reference_);
   for (std::size_t i = 0; i < axial_.rows; ++i) {
     writer.write(i, canonical_.heights.data(), &axial_.vertices[i * n], &parallel_.vertices[i * n]);
   }
@@ -171,7 +145,7 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
                                         std::to_string(vertex_count()));
   }
   const std::size_t n = motion_.columns();
-  const RowWriter writer(frame_, closed_, n, out);
+  const NetWriter writer(frame_, closed_, n, out);
   if (gap) *gap = {};
   run_rows(t, [&](std::size_t i, const double* s, const Vec3* axial, const Vec3* general) {
     writer.write(i, s, axial, general);

@@ -4,7 +4,7 @@
 
 #include <cmath>
 #include <fstream>
-#include <set>
+#include <algorithm>
 #include <sstream>
 
 namespace phedra {
@@ -14,7 +14,11 @@ using nlohmann::json;
 
 std::string type_name(const json& value) { return value.type_name(); }
 
-double read_number(const json& value, const std::string& field) {
+}  // namespace
+
+using nlohmann::json;
+
+double json_number(const json& value, const std::string& field) {
   if (!value.is_number()) {
     throw InvalidInputError(field, "expected a number, got " + type_name(value));
   }
@@ -22,6 +26,25 @@ double read_number(const json& value, const std::string& field) {
   if (!std::isfinite(x)) throw InvalidInputError(field, "is not a finite number");
   return x;
 }
+
+std::size_t json_index(const json& value, const std::string& field) {
+  if (!value.is_number_integer() || value.get<long long>() < 0) {
+    throw InvalidInputError(field, "expected a non-negative integer, got " + value.dump());
+  }
+  return value.get<std::size_t>();
+}
+
+std::vector<double> json_numbers(const json& value, const std::string& field) {
+  if (!value.is_array()) throw InvalidInputError(field, "expected an array of numbers, got " + type_name(value));
+  std::vector<double> numbers;
+  numbers.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i) {
+    numbers.push_back(json_number(value[i], field + "[" + std::to_string(i) + "]"));
+  }
+  return numbers;
+}
+
+namespace {
 
 Vec3 read_vector(const json& value, const std::string& field) {
   if (!value.is_array() || value.size() != 3) {
@@ -31,7 +54,7 @@ Vec3 read_vector(const json& value, const std::string& field) {
                                                          : type_name(value)));
   }
   Vec3 v;
-  for (int k = 0; k < 3; ++k) v[k] = read_number(value[k], field + "[" + std::to_string(k) + "]");
+  for (int k = 0; k < 3; ++k) v[k] = json_number(value[k], field + "[" + std::to_string(k) + "]");
   return v;
 }
 
@@ -45,25 +68,15 @@ Points read_points(const json& value, const std::string& field) {
   return points;
 }
 
-std::vector<double> read_numbers(const json& value, const std::string& field) {
-  if (!value.is_array()) throw InvalidInputError(field, "expected an array of numbers, got " + type_name(value));
-  std::vector<double> numbers;
-  numbers.reserve(value.size());
-  for (std::size_t i = 0; i < value.size(); ++i) {
-    numbers.push_back(read_number(value[i], field + "[" + std::to_string(i) + "]"));
-  }
-  return numbers;
-}
-
 const json& required(const json& preset, const char* key) {
   auto it = preset.find(key);
   if (it == preset.end()) throw InvalidInputError(key, "missing (required key)");
   return *it;
 }
 
-const std::set<std::string>& known_keys() {
-  static const std::set<std::string> keys{"$schema", "name", "description", "trajectory",
-                                          "directions", "axis", "apex_heights", "signs"};
+const std::vector<std::string>& core_keys() {
+  static const std::vector<std::string> keys{"$schema",    "name", "description",  "trajectory",
+                                             "directions", "axis", "apex_heights", "signs"};
   return keys;
 }
 
@@ -82,12 +95,15 @@ std::pair<std::size_t, std::size_t> line_and_column(std::string_view text, std::
 
 }  // namespace
 
-ControlPolylines preset_from_json(const json& preset) {
+ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
   if (!preset.is_object()) throw InvalidInputError("", "a preset must be a JSON object, got " + type_name(preset));
+  std::vector<std::string> known = core_keys();
+  known.insert(known.end(), keys.extra.begin(), keys.extra.end());
   for (const auto& [key, value] : preset.items()) {
-    if (!known_keys().count(key)) {
-      throw InvalidInputError(key, "unknown key (known: name, description, trajectory, directions, axis, "
-                                   "apex_heights, signs)");
+    if (std::find(known.begin(), known.end(), key) == known.end()) {
+      std::string list;
+      for (std::size_t k = 1; k < known.size(); ++k) list += (k > 1 ? ", " : "") + known[k];
+      throw InvalidInputError(key, "unknown key (known: " + list + ")");
     }
   }
   ControlPolylines input;
@@ -98,12 +114,16 @@ ControlPolylines preset_from_json(const json& preset) {
   input.trajectory = read_points(required(preset, "trajectory"), "trajectory");
   input.directions = read_points(required(preset, "directions"), "directions");
   if (auto it = preset.find("axis"); it != preset.end()) input.axis = read_vector(*it, "axis");
-  input.apex_heights = read_numbers(required(preset, "apex_heights"), "apex_heights");
-  const json& signs = required(preset, "signs");
-  if (!signs.is_string()) {
-    throw InvalidInputError("signs", "expected a string of '+' and '-', got " + type_name(signs));
+  if (keys.require_profile || preset.contains("apex_heights")) {
+    input.apex_heights = json_numbers(required(preset, "apex_heights"), "apex_heights");
   }
-  input.signs = signs_from_string(signs.get<std::string>());
+  if (keys.require_profile || preset.contains("signs")) {
+    const json& signs = required(preset, "signs");
+    if (!signs.is_string()) {
+      throw InvalidInputError("signs", "expected a string of '+' and '-', got " + type_name(signs));
+    }
+    input.signs = signs_from_string(signs.get<std::string>());
+  }
   return input;
 }
 
@@ -133,14 +153,15 @@ json parse_json_text(std::string_view text) {
   }
 }
 
-ControlPolylines parse_preset(std::string_view text) {
-  const json document = parse_json_text(text);
+const json& preset_object(const json& document) {
   // A reference case file ({"preset": {...}, "expected": {...}}) holds its preset under "preset".
   if (document.is_object() && document.contains("preset") && !document.contains("trajectory")) {
-    return preset_from_json(document["preset"]);
+    return document["preset"];
   }
-  return preset_from_json(document);
+  return document;
 }
+
+ControlPolylines parse_preset(std::string_view text) { return preset_from_json(preset_object(parse_json_text(text))); }
 
 std::string read_text_file(const std::filesystem::path& path) {
   std::error_code ec;

@@ -12,6 +12,7 @@ namespace phedra {
 /// True when the heights repeat their first two at the end (exactly as given),
 /// all signs are equal and N = len(apex_heights) - 2 >= 3.
 bool has_closed_profile(const ControlPolylines& input);
+bool has_closed_profile(const std::vector<double>& heights, const std::vector<Sign>& signs);
 
 /// N, the number of sides of a closed profile (len(apex_heights) - 2).
 inline std::size_t closed_profile_sides(const ControlPolylines& input) { return input.apex_heights.size() - 2; }

@@ -12,10 +12,28 @@
 
 namespace phedra {
 
+/// Keys a wider preset (tubes, couplings) adds to the core schema.
+struct PresetKeys {
+  /// Further keys the caller handles; the core ignores them.
+  std::vector<std::string> extra;
+  /// Whether `apex_heights` and `signs` are required (a tube or grid key may set them).
+  bool require_profile = true;
+};
+
 /// Control polylines from a parsed preset object. Throws InvalidInputError naming
 /// the field (for example "trajectory[2][1]") for a missing key, an unknown key,
 /// a wrong type, a wrong shape or a non-finite number.
-ControlPolylines preset_from_json(const nlohmann::json& preset);
+ControlPolylines preset_from_json(const nlohmann::json& preset, const PresetKeys& keys = {});
+
+/// The preset object of a document: the document itself, or its "preset" member
+/// for a reference case file.
+const nlohmann::json& preset_object(const nlohmann::json& document);
+
+/// Helpers for wider preset parsers: a finite number, an array of numbers, an
+/// unsigned index (InvalidInputError naming `field` otherwise).
+double json_number(const nlohmann::json& value, const std::string& field);
+std::vector<double> json_numbers(const nlohmann::json& value, const std::string& field);
+std::size_t json_index(const nlohmann::json& value, const std::string& field);
 
 /// Parses preset text: a preset object, or a reference case file whose preset
 /// sits under the key "preset". Malformed JSON throws InvalidInputError with the

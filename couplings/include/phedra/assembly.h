@@ -1,0 +1,88 @@
+#pragma once
+// An assembly of P-hedra that fold with one parameter t (MATH.md section 6):
+// member 0 is a P-hedron (open or a tube); every other member is seeded on a
+// vertex line of an earlier member. evaluate(t) is evaluate(t) of the base plus
+// the recursions of the members, parents before children; the flexion interval
+// is the base's (the members' profile planes are the base's).
+
+#include "phedra/phedron.h"
+#include "phedra/seeded_member.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+/// One vertex of one member.
+struct VertexRef {
+  std::size_t member = 0;
+  std::size_t vertex = 0;  ///< index in the member's topology
+  bool operator==(const VertexRef&) const = default;
+};
+
+/// Positions of every member at one t (user frame), and the closure gap of each tube.
+struct AssemblyConfiguration {
+  double t = 0.0;
+  std::vector<Points> members;
+  std::vector<ClosureGap> closure;
+};
+
+class Assembly {
+ public:
+  explicit Assembly(PHedron base, std::string base_name = "base");
+
+  /// Adds a member seeded on a vertex line of an existing member; returns its index.
+  /// Throws InvalidInputError (naming spec.field) when the member violates an assumption.
+  std::size_t add_member(const MemberSpec& spec);
+
+  std::size_t member_count() const { return members_.size(); }
+  const PHedron& base() const { return base_; }
+  const std::string& name() const { return base_.input().name; }
+  const std::string& member_name(std::size_t m) const { return members_[m].name; }
+  const GridTopology& topology(std::size_t m) const { return members_[m].topology; }
+  bool closed(std::size_t m) const { return members_[m].closed; }
+  /// The member's positions at t* (user frame, topology order).
+  const Points& reference(std::size_t m) const { return members_[m].reference; }
+  /// The member's apex heights T_0..T_n at t* (user frame).
+  std::vector<double> apex_heights(std::size_t m) const;
+  /// The member's sign (members use one sign; the base's first sign).
+  Sign sign(std::size_t m) const;
+  /// How member m (>= 1) is attached.
+  const Seed& seed(std::size_t m) const { return members_[m].seeded->seed(); }
+  std::size_t total_vertex_count() const;
+
+  const FlexionInterval& flexion_interval() const { return base_.flexion_interval(); }
+  double t_star() const { return base_.t_star(); }
+  double t_at_fraction(double fraction) const { return base_.t_at_fraction(fraction); }
+  /// Bounding-box diagonal of every member at t*.
+  double model_size() const { return model_size_; }
+
+  /// Positions of all members at t. Throws OutOfIntervalError outside the interval.
+  void evaluate(double t, AssemblyConfiguration& out) const;
+  AssemblyConfiguration evaluate(double t) const;
+
+  /// Groups of vertices of different members that coincide at t* (within 1e-9 of
+  /// the model size): the vertices the couplings share. They must stay together.
+  const std::vector<std::vector<VertexRef>>& shared_vertices() const;
+
+ private:
+  struct Member {
+    std::string name;
+    bool closed = false;
+    GridTopology topology;
+    Points reference;
+    std::optional<SeededMember> seeded;  ///< empty for the base
+  };
+  void evaluate_states(double t, std::vector<NetState>& states) const;
+  void write_user(std::size_t m, const NetState& state, Points& out) const;
+
+  PHedron base_;
+  NetState base_reference_;
+  std::vector<Member> members_;
+  double model_size_ = 0.0;
+  mutable std::optional<std::vector<std::vector<VertexRef>>> shared_;
+};
+
+}  // namespace phedra

@@ -1,0 +1,147 @@
+#include "phedra/assembly_check.h"
+
+#include "phedra/number_format.h"
+#include "phedra/tube.h"
+
+#include <memory>
+#include <ostream>
+
+namespace phedra {
+namespace {
+
+class AssemblyChecker {
+ public:
+  AssemblyChecker(const Assembly& a, double relative) : a_(a) {
+    r_.name = a.name();
+    r_.members = a.member_count();
+    r_.shared_groups = a.shared_vertices().size();
+    r_.model_size = a.model_size();
+    r_.tolerance = relative * a.model_size();
+    r_.t_lambda = a.flexion_interval().lower.t;
+    r_.t_mu = a.flexion_interval().upper.t;
+    r_.t_star = a.t_star();
+    r_.member_closure.assign(a.member_count(), 0.0);
+    r_.warning = tube_symmetry_warning(a.base().input());
+    for (std::size_t m = 0; m < a.member_count(); ++m) {
+      r_.has_tubes = r_.has_tubes || a.closed(m);
+      figures_.push_back(std::make_unique<FigureTracker>(a.topology(m), a.reference(m), prefix(m)));
+    }
+  }
+
+  void sample(double t) {
+    a_.evaluate(t, configuration_);
+    for (std::size_t m = 0; m < a_.member_count(); ++m) {
+      figures_[m]->observe(t, configuration_.members[m]);
+      if (a_.closed(m)) {
+        const ClosureGap& gap = configuration_.closure[m];
+        r_.closure.update(gap.value, t, prefix(m) + "row " + std::to_string(gap.row));
+        r_.member_closure[m] = std::max(r_.member_closure[m], gap.value);
+      }
+    }
+    for (const auto& group : a_.shared_vertices()) {
+      const Vec3& first = configuration_.members[group.front().member][group.front().vertex];
+      for (std::size_t k = 1; k < group.size(); ++k) {
+        const VertexRef& r = group[k];
+        const double d = (configuration_.members[r.member][r.vertex] - first).norm();
+        if (!(d <= r_.shared.value)) {
+          r_.shared.update(d, t, prefix(group.front().member) + "vertex " + label(group.front()) + " and " +
+                                     prefix(r.member) + "vertex " + label(r));
+        }
+      }
+    }
+    ++r_.samples;
+  }
+
+  /// Samples t* and compares every member with its constructed net.
+  void sample_t_star() {
+    sample(a_.t_star());
+    for (std::size_t m = 0; m < a_.member_count(); ++m) {
+      for (std::size_t v = 0; v < configuration_.members[m].size(); ++v) {
+        const double d = (configuration_.members[m][v] - a_.reference(m)[v]).norm();
+        if (!(d <= r_.reproduction)) r_.reproduction = d;
+      }
+    }
+  }
+
+  AssemblyCheckReport report() {
+    for (const auto& f : figures_) {
+      r_.planarity.update(f->planarity().value, f->planarity().t, f->planarity().location);
+      r_.isometry.update(f->isometry().value, f->isometry().t, f->isometry().location);
+    }
+    return r_;
+  }
+
+ private:
+  std::string prefix(std::size_t m) const {
+    return a_.member_count() == 1 ? std::string() : "member " + std::to_string(m) + " (" + a_.member_name(m) + "), ";
+  }
+  std::string label(const VertexRef& r) const {
+    const GridTopology& g = a_.topology(r.member);
+    return "(" + std::to_string(g.row_of(r.vertex)) + "," + std::to_string(g.column_of(r.vertex)) + ")";
+  }
+
+  const Assembly& a_;
+  AssemblyConfiguration configuration_;
+  std::vector<std::unique_ptr<FigureTracker>> figures_;
+  AssemblyCheckReport r_;
+};
+
+}  // namespace
+
+bool AssemblyCheckReport::passed() const {
+  return planarity.value <= tolerance && isometry.value <= tolerance && closure.value <= tolerance &&
+         shared.value <= tolerance && reproduction <= tolerance;
+}
+
+nlohmann::json AssemblyCheckReport::to_json() const {
+  nlohmann::json j{{"passed", passed()},
+                   {"name", name},
+                   {"members", members},
+                   {"shared_vertex_groups", shared_groups},
+                   {"model_size", model_size},
+                   {"tolerance", tolerance},
+                   {"flexion_interval", {t_lambda, t_mu}},
+                   {"t_star", t_star},
+                   {"samples", samples},
+                   {"planarity", worst_case_json(planarity, model_size)},
+                   {"isometry", worst_case_json(isometry, model_size)},
+                   {"shared_vertices", worst_case_json(shared, model_size)},
+                   {"reproduction", reproduction},
+                   {"member_closure", member_closure}};
+  if (has_tubes) j["closure"] = worst_case_json(closure, model_size);
+  if (!warning.empty()) j["warning"] = warning;
+  return j;
+}
+
+std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
+  out << (r.passed() ? "PASS" : "FAIL") << ": " << r.name << ", " << r.members << (r.members == 1 ? " member" : " members")
+      << ", " << r.samples << " configurations over [" << format_number(r.t_lambda) << ", " << format_number(r.t_mu)
+      << "], tolerance " << format_number(r.tolerance) << " (model size " << format_number(r.model_size) << ")\n";
+  print_worst_case(out, "planarity       ", r.planarity, r.model_size);
+  print_worst_case(out, "isometry        ", r.isometry, r.model_size);
+  if (r.has_tubes) print_worst_case(out, "closure gap     ", r.closure, r.model_size);
+  if (r.members > 1) {
+    out << "  shared vertices: " << r.shared_groups << " groups\n";
+    print_worst_case(out, "shared mismatch ", r.shared, r.model_size);
+  }
+  out << "  reproduction    " << format_number(r.reproduction) << " (evaluate(t*) against the constructed nets)\n";
+  if (!r.warning.empty()) out << "  warning: " << r.warning << '\n';
+  return out;
+}
+
+AssemblyCheckReport check_assembly(const Assembly& a, const CheckOptions& options) {
+  AssemblyChecker checker(a, options.relative_tolerance);
+  for (double t : interval_samples(a.flexion_interval().lower.t, a.flexion_interval().upper.t, options.samples)) {
+    checker.sample(t);
+  }
+  checker.sample_t_star();
+  return checker.report();
+}
+
+AssemblyCheckReport check_assembly_at_t_star(const Assembly& a, double relative) {
+  AssemblyChecker checker(a, relative);
+  checker.sample_t_star();
+  return checker.report();
+}
+
+}  // namespace phedra

@@ -1,0 +1,78 @@
+#include "phedra/assembly_mesh.h"
+
+#include <algorithm>
+#include <map>
+
+namespace phedra {
+
+Points AssemblyMesh::positions(const AssemblyConfiguration& c) const {
+  Points out;
+  out.reserve(vertices.size());
+  for (const VertexRef& r : vertices) out.push_back(c.members[r.member][r.vertex]);
+  return out;
+}
+
+AssemblyMesh separate_mesh(const Assembly& assembly) {
+  AssemblyMesh mesh;
+  for (std::size_t m = 0; m < assembly.member_count(); ++m) {
+    const std::size_t offset = mesh.vertices.size();
+    const GridTopology& g = assembly.topology(m);
+    for (std::size_t v = 0; v < g.vertex_count(); ++v) mesh.vertices.push_back({m, v});
+    for (const Quad& q : g.faces()) {
+      mesh.faces.push_back({q[0] + offset, q[1] + offset, q[2] + offset, q[3] + offset});
+      mesh.face_member.push_back(m);
+    }
+  }
+  return mesh;
+}
+
+AssemblyMesh merged_mesh(const Assembly& assembly) {
+  // Weld: every member vertex gets the id of its shared group (or its own).
+  std::vector<std::size_t> offset(assembly.member_count() + 1, 0);
+  for (std::size_t m = 0; m < assembly.member_count(); ++m) offset[m + 1] = offset[m] + assembly.topology(m).vertex_count();
+  std::vector<std::size_t> weld(offset.back());
+  for (std::size_t k = 0; k < weld.size(); ++k) weld[k] = k;
+  for (const auto& group : assembly.shared_vertices()) {
+    const std::size_t id = offset[group.front().member] + group.front().vertex;
+    for (const VertexRef& r : group) weld[offset[r.member] + r.vertex] = id;
+  }
+  // Faces keyed by their welded vertex set; a key seen twice is a shared strip.
+  struct Candidate {
+    Quad quad;
+    std::size_t member;
+  };
+  std::vector<Candidate> candidates;
+  std::map<std::array<std::size_t, 4>, std::size_t> count;
+  for (std::size_t m = 0; m < assembly.member_count(); ++m) {
+    for (const Quad& q : assembly.topology(m).faces()) {
+      Quad w{weld[offset[m] + q[0]], weld[offset[m] + q[1]], weld[offset[m] + q[2]], weld[offset[m] + q[3]]};
+      std::array<std::size_t, 4> key = w;
+      std::sort(key.begin(), key.end());
+      ++count[key];
+      candidates.push_back({w, m});
+    }
+  }
+  AssemblyMesh mesh;
+  std::vector<std::size_t> index(weld.size(), SIZE_MAX);
+  auto vertex_of = [&](std::size_t global) {
+    if (index[global] == SIZE_MAX) {
+      const std::size_t m = std::upper_bound(offset.begin(), offset.end(), global) - offset.begin() - 1;
+      index[global] = mesh.vertices.size();
+      mesh.vertices.push_back({m, global - offset[m]});
+    }
+    return index[global];
+  };
+  for (const Candidate& c : candidates) {
+    std::array<std::size_t, 4> key = c.quad;
+    std::sort(key.begin(), key.end());
+    if (count[key] > 1) {
+      ++mesh.deleted_faces;
+      continue;
+    }
+    mesh.faces.push_back({vertex_of(c.quad[0]), vertex_of(c.quad[1]), vertex_of(c.quad[2]), vertex_of(c.quad[3])});
+    mesh.face_member.push_back(c.member);
+  }
+  return mesh;
+}
+
+}  // namespace phedra

@@ -1,0 +1,42 @@
+#pragma once
+// Writes rows of a general net (canonical frame) into an output grid in the
+// user's frame: open nets get their boundary columns (towards S_0 and S_n),
+// closed ones their N = n - 1 distinct columns.
+
+#include "phedra/canonical_frame.h"
+
+#include <span>
+
+namespace phedra {
+
+class NetWriter {
+ public:
+  NetWriter(const CanonicalFrame& frame, bool closed, std::size_t n, std::span<Vec3> out)
+      : to_user_(frame.rotation().transpose()), origin_(frame.origin()), closed_(closed), n_(n), out_(out) {}
+
+  /// Output columns per row: n + 2 (open) or n - 1 (closed).
+  static std::size_t columns(bool closed, std::size_t n) { return closed ? n - 1 : n + 2; }
+
+  /// Row i from the apexes s[0..n], the axial row and the general row (n entries each).
+  void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
+    if (closed_) {
+      Vec3* row = out_.data() + i * (n_ - 1);
+      for (std::size_t c = 0; c + 1 < n_; ++c) row[c] = user(general[c]);
+      return;
+    }
+    Vec3* row = out_.data() + i * (n_ + 2);
+    row[0] = user(general[0] + (Vec3(0, 0, s[0]) - axial[0]));
+    for (std::size_t j = 0; j < n_; ++j) row[j + 1] = user(general[j]);
+    row[n_ + 1] = user(general[n_ - 1] + (Vec3(0, 0, s[n_]) - axial[n_ - 1]));
+  }
+
+ private:
+  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
+  Mat3 to_user_;
+  Vec3 origin_;
+  bool closed_;
+  std::size_t n_;
+  std::span<Vec3> out_;
+};
+
+}  // namespace phedra
