@@ -1,7 +1,7 @@
 // phedra check PRESET [--samples N] [--tolerance REL] [--json]
 
 #include "commands.h"
-#include "phedra/interval_check.h"
+#include "phedra/assembly_check.h"
 #include "phedra/errors.h"
 #include "support.h"
 
@@ -22,8 +22,8 @@ struct CheckCommandOptions {
 void add_check_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<CheckCommandOptions>();
   CLI::App* sub = app.add_subcommand(
-      "check", "Check planarity and isometry over the whole flexion interval (dense samples, both limits and t*); "
-               "exit 1 when a figure exceeds the tolerance");
+      "check", "Check planarity, isometry, tube closure and shared vertices over the whole flexion interval (dense "
+               "samples, both limits and t*); exit 1 when a figure exceeds the tolerance");
   sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
   sub->add_option("--samples", options->check.samples, "Evenly spaced samples of [t_lambda, t_mu], limits included")
       ->check(CLI::Range(2, 10000000))
@@ -34,8 +34,8 @@ void add_check_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
-    const PHedron p = load_phedron(context, options->preset);
-    const IntervalCheckReport report = check_over_interval(p, options->check);
+    const Design design = load(context, options->preset);
+    const AssemblyCheckReport report = check_assembly(design.assembly, options->check);
     if (options->json) {
       context.out << report.to_json().dump(2) << '\n';
     } else {

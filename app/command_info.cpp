@@ -1,9 +1,9 @@
-// phedra info PRESET [--json]: t*, case, flexion interval, counts, and the
-// planarity/isometry figures at t*.
+// phedra info PRESET [--json]: what the preset builds, t*, case, flexion interval
+// with its limits, counts, and the figures at t*.
 
 #include "commands.h"
+#include "phedra/assembly_check.h"
 #include "phedra/control_polylines.h"
-#include "phedra/interval_check.h"
 #include "phedra/number_format.h"
 #include "support.h"
 
@@ -24,68 +24,100 @@ std::string limit_cause(std::size_t strip) {
          std::to_string(strip) + " coincide)";
 }
 
-nlohmann::json info_json(const PHedron& p, const IntervalCheckReport& at_star) {
-  const FlexionInterval& f = p.flexion_interval();
+nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const AssemblyCheckReport& at_star) {
+  const Assembly& a = design.assembly;
+  const PHedron& p = a.base();
+  const FlexionInterval& f = a.flexion_interval();
   const GridTopology& g = p.topology();
-  return {{"name", p.input().name},
-          {"t_star", p.t_star()},
-          {"case", to_string(p.motion_case())},
-          {"moving_apex", p.motion_case() == MotionCase::a ? "S_0" : "S_1"},
-          {"flexion_interval", {f.lower.t, f.upper.t}},
-          {"limits",
-           {{{"t", f.lower.t}, {"strip", f.lower.strip}, {"cause", limit_cause(f.lower.strip)}},
-            {{"t", f.upper.t}, {"strip", f.upper.strip}, {"cause", limit_cause(f.upper.strip)}}}},
-          {"profiles", g.rows()},
-          {"profile_vertices", p.profile_vertex_count()},
-          {"signs", signs_to_string(p.input().signs)},
-          {"rows", g.rows()},
-          {"columns", g.columns()},
-          {"vertices", g.vertex_count()},
-          {"faces", g.faces().size()},
-          {"edges", g.edges().size()},
-          {"model_size", p.model_size()},
-          {"planarity", at_star.planarity.value},
-          {"isometry", at_star.isometry.value},
-          {"reproduction", at_star.reproduction},
-          {"at_t_star", at_star.to_json()}};
+  nlohmann::json members = nlohmann::json::array();
+  for (std::size_t m = 0; m < a.member_count(); ++m) members.push_back(a.member_name(m));
+  nlohmann::json j{{"name", a.name()},
+                   {"kind", design.kind},
+                   {"t_star", a.t_star()},
+                   {"case", to_string(p.motion_case())},
+                   {"moving_apex", p.motion_case() == MotionCase::a ? "S_0" : "S_1"},
+                   {"flexion_interval", {f.lower.t, f.upper.t}},
+                   {"limits",
+                    {{{"t", f.lower.t}, {"strip", f.lower.strip}, {"cause", limit_cause(f.lower.strip)}},
+                     {{"t", f.upper.t}, {"strip", f.upper.strip}, {"cause", limit_cause(f.upper.strip)}}}},
+                   {"profiles", g.rows()},
+                   {"profile_vertices", p.profile_vertex_count()},
+                   {"signs", signs_to_string(p.input().signs)},
+                   {"closed", p.closed()},
+                   {"members", a.member_count()},
+                   {"member_names", members},
+                   {"merged", design.merge},
+                   {"vertices", mesh.labels.size()},
+                   {"faces", mesh.faces.size()},
+                   {"shared_vertex_groups", a.shared_vertices().size()},
+                   {"model_size", a.model_size()},
+                   {"planarity", at_star.planarity.value},
+                   {"isometry", at_star.isometry.value},
+                   {"closure", at_star.closure.value},
+                   {"reproduction", at_star.reproduction},
+                   {"at_t_star", at_star.to_json()}};
+  if (a.member_count() == 1) {
+    j["rows"] = g.rows();
+    j["columns"] = g.columns();
+    j["edges"] = g.edges().size();
+  }
+  if (!at_star.warning.empty()) j["warning"] = at_star.warning;
+  return j;
 }
 
-void print_info(std::ostream& out, const PHedron& p, const IntervalCheckReport& at_star) {
-  const FlexionInterval& f = p.flexion_interval();
+void print_info(std::ostream& out, const Design& design, const MotionDocument& mesh, const AssemblyCheckReport& at_star) {
+  const Assembly& a = design.assembly;
+  const PHedron& p = a.base();
+  const FlexionInterval& f = a.flexion_interval();
   const GridTopology& g = p.topology();
-  const double size = p.model_size();
-  out << "name:              " << p.input().name << '\n'
+  const double size = a.model_size();
+  out << "name:              " << a.name() << '\n'
+      << "kind:              " << design.kind << '\n'
       << "profiles:          " << g.rows() << " (m = " << g.rows() - 1 << " strips), n = " << p.profile_vertex_count()
-      << " vertices each, signs " << signs_to_string(p.input().signs) << '\n'
-      << "mesh:              " << g.vertex_count() << " vertices (" << g.rows() << " x " << g.columns()
-      << " grid with boundary columns), " << g.faces().size() << " faces, " << g.edges().size() << " edges\n"
-      << "motion parameter:  case (" << to_string(p.motion_case()) << "), t = axis coordinate of "
+      << " vertices each, signs " << signs_to_string(p.input().signs) << '\n';
+  if (a.member_count() == 1) {
+    out << "mesh:              " << g.vertex_count() << " vertices (" << g.rows() << " x " << g.columns()
+        << (p.closed() ? " grid, cyclic columns), " : " grid with boundary columns), ") << g.faces().size()
+        << " faces, " << g.edges().size() << " edges\n";
+  } else {
+    out << "members:           " << a.member_count() << " (" << a.member_name(0) << ", ..., "
+        << a.member_name(a.member_count() - 1) << "), " << a.shared_vertices().size() << " shared vertex groups\n"
+        << "mesh:              " << mesh.labels.size() << " vertices, " << mesh.faces.size() << " faces"
+        << (design.merge ? " (merged: shared vertices welded, shared face strips deleted)" : " (members side by side)")
+        << '\n';
+  }
+  out << "motion parameter:  case (" << to_string(p.motion_case()) << "), t = axis coordinate of "
       << (p.motion_case() == MotionCase::a ? "S_0" : "S_1") << '\n'
-      << "t*:                " << format_number(p.t_star()) << '\n'
+      << "t*:                " << format_number(a.t_star()) << '\n'
       << "flexion interval:  [" << format_number(f.lower.t) << ", " << format_number(f.upper.t) << "]\n"
       << "  t_lambda limit:  " << limit_cause(f.lower.strip) << '\n'
       << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n'
       << "model size:        " << format_number(size) << " (bounding-box diagonal at t*)\n"
       << "at t*:             planarity " << format_number(at_star.planarity.value / size) << ", isometry "
       << format_number(at_star.isometry.value / size) << ", reproduction "
-      << format_number(at_star.reproduction / size) << " (relative to the model size)\n";
+      << format_number(at_star.reproduction / size);
+  if (at_star.has_tubes) out << ", closure " << format_number(at_star.closure.value / size);
+  if (a.member_count() > 1) out << ", shared mismatch " << format_number(at_star.shared.value / size);
+  out << " (relative to the model size)\n";
+  if (!at_star.warning.empty()) out << "warning:           " << at_star.warning << '\n';
 }
 
 }  // namespace
 
 void add_info_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<InfoOptions>();
-  CLI::App* sub = app.add_subcommand("info", "Show t*, the motion case, the flexion interval with its limits, "
-                                              "the mesh counts and the planarity/isometry at t*");
+  CLI::App* sub = app.add_subcommand("info", "Show what the preset builds, t*, the motion case, the flexion interval "
+                                              "with its limits, the mesh counts and the figures at t*");
   sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
-    const PHedron p = load_phedron(context, options->preset);
-    const IntervalCheckReport at_star = check_at_t_star(p);
+    const Design design = load(context, options->preset);
+    const MotionDocument mesh = motion_document(design);
+    const AssemblyCheckReport at_star = check_assembly_at_t_star(design.assembly);
     if (options->json) {
-      context.out << info_json(p, at_star).dump(2) << '\n';
+      context.out << info_json(design, mesh, at_star).dump(2) << '\n';
     } else {
-      print_info(context.out, p, at_star);
+      print_info(context.out, design, mesh, at_star);
     }
   });
 }

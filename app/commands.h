@@ -19,5 +19,6 @@ struct Context {
 void add_info_command(CLI::App& app, Context& context);
 void add_sample_command(CLI::App& app, Context& context);
 void add_check_command(CLI::App& app, Context& context);
+void add_generate_command(CLI::App& app, Context& context);
 
 }  // namespace phedra::cli

@@ -1,15 +1,14 @@
 #include "support.h"
 
 #include "phedra/atomic_file.h"
-#include "phedra/preset.h"
 
 #include <ostream>
 
 namespace phedra::cli {
 
-PHedron load_phedron(Context& context, const std::string& path) {
+Design load(Context& context, const std::string& path) {
   context.preset = path;
-  return PHedron(load_preset(path));
+  return load_design(path);
 }
 
 void emit(const std::string& content, const std::string& path, const std::string& input, std::ostream& out) {

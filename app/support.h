@@ -2,16 +2,16 @@
 // What the commands share: loading a preset and emitting a result.
 
 #include "commands.h"
-#include "phedra/phedron.h"
+#include "phedra/design.h"
 
 #include <iosfwd>
 #include <string>
 
 namespace phedra::cli {
 
-/// Loads and constructs the P-hedron of a preset file; records the path in the
-/// context so that errors name it.
-PHedron load_phedron(Context& context, const std::string& path);
+/// Loads and builds the design of a preset file; records the path in the context
+/// so that errors name it.
+Design load(Context& context, const std::string& path);
 
 /// Writes `content` to `path` (temporary file + rename), or to `out` when path
 /// is empty or "-". Refuses to overwrite `input`.
