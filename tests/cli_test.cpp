@@ -166,3 +166,50 @@ TEST_CASE("--help of every command exits 0 and describes it", "[cli]") {
   CHECK(phedra_cli({"check", "--help"}).code == 0);
   CHECK_THAT(phedra_cli({"--version"}).out, Contains("phedra 0."));
 }
+
+TEST_CASE("generate writes the mesh and the motion of tubes and arrays", "[cli]") {
+  const fs::path dir = scratch_directory();
+  const fs::path out = dir / "grid.json";
+  const Run r = phedra_cli({"generate", presets + "/grid-3x3.json", "-o", out.string()});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Contains("3 x 3 grid of parallelogram cells"));
+  const json g = json::parse(std::ifstream(out));
+  CHECK(g["members"].size() == 9);
+  CHECK(g["samples"].size() == 41);
+  CHECK(g["labels"][0].size() == 3);
+  CHECK(g["face_members"].size() == g["faces"].size());
+  CHECK(g["samples"][0]["vertices"].size() == g["labels"].size());
+
+  const fs::path merged = dir / "merged.json";
+  CHECK(phedra_cli({"generate", presets + "/merged-tube.json", "-o", merged.string(), "--count", "3"}).code == 0);
+  const json m = json::parse(std::ifstream(merged));
+  CHECK(m["kind"] == "merged assembly of 3 tubes");
+  CHECK(m["faces"].size() == 80);  // an octagonal tube over 10 strips
+  CHECK(m["labels"].size() == 88);
+
+  const fs::path tube = dir / "tube.json";
+  CHECK(phedra_cli({"generate", presets + "/parallelogram-tube.json", "-o", tube.string(), "--t", "1"}).code == 0);
+  const json t = json::parse(std::ifstream(tube));
+  CHECK(t["labels"][0].size() == 2);  // a single P-hedron keeps [i, c]
+  CHECK(t["faces"].size() == 40);
+  CHECK(phedra_cli({"generate", presets + "/grid-3x3.json"}).code == 2);  // -o is required
+  fs::remove_all(dir);
+}
+
+TEST_CASE("check on tubes and arrays: the asymmetric anti-parallelogram fails with its gap", "[cli]") {
+  const Run r = phedra_cli({"check", data + "/cases/tube-antiparallelogram-asymmetric.json", "--json"});
+  CHECK(r.code == 1);
+  const json report = json::parse(r.out);
+  CHECK(report["closure"]["value"].get<double>() == Approx(1.144259069340053).epsilon(1e-6));
+  CHECK_THAT(report["warning"].get<std::string>(), Contains("z_0 + z_2 = z_1 + z_3"));
+  const Run info = phedra_cli({"info", data + "/cases/tube-antiparallelogram-asymmetric.json"});
+  CHECK(info.code == 0);
+  CHECK_THAT(info.out, Contains("warning:") && Contains("closed at t* only"));
+  for (const std::string name : {"tube-parallelogram", "tube-antiparallelogram"}) {
+    const Run ok = phedra_cli({"check", data + "/cases/" + name + ".json"});
+    CHECK(ok.code == 0);
+  }
+  const Run grid = phedra_cli({"check", presets + "/grid-3x3.json", "--json"});
+  CHECK(grid.code == 0);
+  CHECK(json::parse(grid.out)["shared_vertex_groups"] == 132);
+}
