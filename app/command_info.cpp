@@ -96,7 +96,7 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << "at t*:             planarity " << format_number(at_star.planarity.value / size) << ", isometry "
       << format_number(at_star.isometry.value / size) << ", reproduction "
       << format_number(at_star.reproduction / size);
-  if (at_star.has_tubes) out << ", closure " << format_number(at_star.closure.value / size);
+  if (at_star.closed) out << ", closure " << format_number(at_star.closure.value / size);
   if (a.member_count() > 1) out << ", shared mismatch " << format_number(at_star.shared.value / size);
   out << " (relative to the model size)\n";
   if (!at_star.warning.empty()) out << "warning:           " << at_star.warning << '\n';

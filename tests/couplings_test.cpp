@@ -52,8 +52,9 @@ std::optional<TubeGrid> random_grid(std::mt19937_64& rng, std::size_t rows, std:
       for (double& x : w) x += h;
       TubeGrid grid = make_parallelogram_grid(base, u, w);
       const FlexionInterval& f = grid.assembly.flexion_interval();
-      const double t = grid.assembly.t_star();
-      if (std::min(t - f.lower.t, f.upper.t - t) >= 1e-5 * grid.assembly.model_size()) return grid;
+      if (test::well_inside_interval(grid.assembly.t_star(), f.lower.t, f.upper.t, grid.assembly.model_size())) {
+        return grid;
+      }
     } catch (const InvalidInputError&) {
     }
   }

@@ -104,7 +104,7 @@ std::optional<PHedron> construct(std::mt19937_64& rng, const RandomInputShape& s
     try {
       PHedron p(random_input(rng, shape));
       const FlexionInterval& f = p.flexion_interval();
-      if (std::min(p.t_star() - f.lower.t, f.upper.t - p.t_star()) >= 1e-5 * p.model_size()) return p;
+      if (test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) return p;
     } catch (const InvalidInputError&) {
     }
     ++redrawn;

@@ -46,7 +46,7 @@ std::optional<PHedron> random_tube(std::mt19937_64& rng, TubeType type, int& red
       set_tube_profile(input, type, random_heights(rng, type, asymmetric));
       PHedron p(std::move(input));
       const FlexionInterval& f = p.flexion_interval();
-      if (std::min(p.t_star() - f.lower.t, f.upper.t - p.t_star()) >= 1e-5 * p.model_size()) return p;
+      if (test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) return p;
     } catch (const InvalidInputError&) {
     }
     ++redrawn;
@@ -132,4 +132,32 @@ TEST_CASE("closed all-'+' hexagon profiles close over the interval too", "[tubes
   // An all-'-' hexagon does not close even at t*: refused.
   in.signs.assign(6, Sign::minus);
   CHECK_THROWS_WITH(PHedron(in), Contains("does not close at t*"));
+}
+
+TEST_CASE("axial tubes (every profile plane through the axis) close too", "[tubes]") {
+  std::mt19937_64 rng(5);
+  int checked = 0;
+  for (int k = 0; k < 40; ++k) {
+    ControlPolylines in;
+    const std::size_t m = 3 + k % 10;
+    double angle = 0;
+    for (std::size_t i = 0; i <= m; ++i) {
+      const double r = uniform(rng, 1.5, 3.0);
+      in.trajectory.push_back(Vec3(r * std::cos(angle), r * std::sin(angle), 0.3 * i + uniform(rng, -0.05, 0.05)));
+      in.directions.push_back(Vec3(std::cos(angle), std::sin(angle), 0));
+      angle += uniform(rng, 0.15, 0.5);
+    }
+    const TubeType type = k % 2 ? TubeType::anti_parallelogram : TubeType::parallelogram;
+    try {
+      const PHedron p = make_tube(in, type, random_heights(rng, type));
+      const FlexionInterval& f = p.flexion_interval();
+      if (!test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) continue;
+      const IntervalCheckReport r = check_over_interval(p, {});
+      CAPTURE(k, r.to_json().dump());
+      CHECK(r.passed());
+      ++checked;
+    } catch (const InvalidInputError&) {
+    }
+  }
+  CHECK(checked >= 20);
 }

@@ -23,7 +23,7 @@ class AssemblyChecker {
     r_.member_closure.assign(a.member_count(), 0.0);
     r_.warning = tube_symmetry_warning(a.base().input());
     for (std::size_t m = 0; m < a.member_count(); ++m) {
-      r_.has_tubes = r_.has_tubes || a.closed(m);
+      r_.closed = r_.closed || a.closed(m);
       figures_.push_back(std::make_unique<FigureTracker>(a.topology(m), a.reference(m), prefix(m)));
     }
   }
@@ -88,27 +88,16 @@ class AssemblyChecker {
 
 }  // namespace
 
-bool AssemblyCheckReport::passed() const {
-  return planarity.value <= tolerance && isometry.value <= tolerance && closure.value <= tolerance &&
-         shared.value <= tolerance && reproduction <= tolerance;
-}
+bool AssemblyCheckReport::passed() const { return IntervalCheckReport::passed() && shared.value <= tolerance; }
 
 nlohmann::json AssemblyCheckReport::to_json() const {
-  nlohmann::json j{{"passed", passed()},
-                   {"name", name},
-                   {"members", members},
-                   {"shared_vertex_groups", shared_groups},
-                   {"model_size", model_size},
-                   {"tolerance", tolerance},
-                   {"flexion_interval", {t_lambda, t_mu}},
-                   {"t_star", t_star},
-                   {"samples", samples},
-                   {"planarity", worst_case_json(planarity, model_size)},
-                   {"isometry", worst_case_json(isometry, model_size)},
-                   {"shared_vertices", worst_case_json(shared, model_size)},
-                   {"reproduction", reproduction},
-                   {"member_closure", member_closure}};
-  if (has_tubes) j["closure"] = worst_case_json(closure, model_size);
+  nlohmann::json j = IntervalCheckReport::to_json();
+  j["passed"] = passed();
+  j["name"] = name;
+  j["members"] = members;
+  j["shared_vertex_groups"] = shared_groups;
+  j["shared_vertices"] = worst_case_json(shared, model_size);
+  j["member_closure"] = member_closure;
   if (!warning.empty()) j["warning"] = warning;
   return j;
 }
@@ -119,7 +108,7 @@ std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
       << "], tolerance " << format_number(r.tolerance) << " (model size " << format_number(r.model_size) << ")\n";
   print_worst_case(out, "planarity       ", r.planarity, r.model_size);
   print_worst_case(out, "isometry        ", r.isometry, r.model_size);
-  if (r.has_tubes) print_worst_case(out, "closure gap     ", r.closure, r.model_size);
+  if (r.closed) print_worst_case(out, "closure gap     ", r.closure, r.model_size);
   if (r.members > 1) {
     out << "  shared vertices: " << r.shared_groups << " groups\n";
     print_worst_case(out, "shared mismatch ", r.shared, r.model_size);

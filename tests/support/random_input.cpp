@@ -1,5 +1,6 @@
 #include "random_input.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phedra::test {
@@ -21,6 +22,10 @@ Mat3 random_rotation(std::mt19937_64& rng) {
 }
 
 }  // namespace
+
+bool well_inside_interval(double t_star, double lower, double upper, double model_size) {
+  return std::min(t_star - lower, upper - t_star) >= 1e-5 * model_size;
+}
 
 std::vector<Sign> sign_pattern(std::size_t n, std::size_t k) {
   std::vector<Sign> signs(n - 1);

@@ -27,6 +27,11 @@ struct RandomInputShape {
 /// (rare: bifurcation-near or scissor-near draws).
 ControlPolylines random_input(std::mt19937_64& rng, const RandomInputShape& shape);
 
+/// Whether t* lies at least 1e-5 of the model size away from both flexion limits.
+/// Positions are ill-conditioned next to a limit (dV/dt is unbounded); property
+/// tests draw again when this fails and count the redraws.
+bool well_inside_interval(double t_star, double lower, double upper, double model_size);
+
 /// All 2^(n-1) sign patterns of n profile vertices, pattern k: bit b set = '-' at S_{b+1}.
 std::vector<Sign> sign_pattern(std::size_t n, std::size_t k);
 

@@ -13,22 +13,15 @@
 
 namespace phedra {
 
-struct AssemblyCheckReport {
+/// The figures of IntervalCheckReport over all members (`closed`: some member is a
+/// tube; `closure` is the worst tube's gap), plus the shared vertices.
+struct AssemblyCheckReport : IntervalCheckReport {
   std::string name;
   std::size_t members = 0;
-  std::size_t shared_groups = 0;  ///< groups of coincident vertices checked
-  double model_size = 0.0;
-  double tolerance = 0.0;
-  double t_lambda = 0.0, t_star = 0.0, t_mu = 0.0;
-  std::size_t samples = 0;
-  WorstCase planarity;
-  WorstCase isometry;
-  bool has_tubes = false;
-  WorstCase closure;       ///< worst tube closure gap
-  WorstCase shared;        ///< worst distance between vertices that coincide at t*
-  double reproduction = 0.0;  ///< max |evaluate(t*) - constructed net| over all members
+  std::size_t shared_groups = 0;       ///< groups of coincident vertices checked
+  WorstCase shared;                    ///< worst distance between vertices that coincide at t*
   std::vector<double> member_closure;  ///< worst closure gap of each member (0 for open members)
-  std::string warning;     ///< e.g. an anti-parallelogram that violates its symmetry condition
+  std::string warning;                 ///< e.g. an anti-parallelogram that violates its symmetry condition
 
   bool passed() const;
   nlohmann::json to_json() const;
