@@ -8,7 +8,7 @@
 namespace phedra::cli {
 
 int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
-  Context context{out, err};
+  Context context{out, err, 0, {}};
   CLI::App app{"phedra: design and animate P-hedra, rigid-foldable planar-quad surfaces given by three "
                "control polylines (trajectory, directions, apexes)",
                "phedra"};

@@ -1,10 +1,14 @@
-// phedra generate PRESET -o FILE [--count N | --t T | --fraction F ...]
+// phedra generate PRESET -o FILE(.glb|.gltf|.json) [options]
 
 #include "commands.h"
 #include "motion_parameters.h"
+#include "phedra/errors.h"
+#include "phedra/gltf_export.h"
 #include "phedra/number_format.h"
+#include "progress.h"
 #include "support.h"
 
+#include <filesystem>
 #include <memory>
 #include <ostream>
 
@@ -13,26 +17,87 @@ namespace {
 
 struct GenerateOptions {
   std::string preset;
-  MotionParameters parameters;
   std::string output;
+  MotionParameters parameters;
+  double seconds = 4.0;
+  bool ping_pong = false;
+  std::optional<double> static_t;
+  double hinge_tolerance = 1e-3;
+  bool quiet = false;
 };
+
+enum class Format { glb, gltf, json };
+
+Format format_of(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".glb") return Format::glb;
+  if (ext == ".gltf") return Format::gltf;
+  if (ext == ".json") return Format::json;
+  throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf or .json)");
+}
+
+void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary) {
+  GltfOptions options;
+  options.binary = binary;
+  options.seconds = o.seconds;
+  options.ping_pong = o.ping_pong;
+  options.static_t = o.static_t;
+  options.keyframes.relative_tolerance = o.hinge_tolerance;
+  Progress progress(context.err, "keyframes", !o.quiet);
+  options.progress = [&](std::size_t count) { progress.update(count); };
+  if (o.static_t && !design.assembly.flexion_interval().contains(*o.static_t)) {
+    const FlexionInterval& f = design.assembly.flexion_interval();
+    throw OutOfIntervalError(*o.static_t, f.lower.t, f.upper.t);
+  }
+  GltfReport report;
+  const std::string bytes = gltf_bytes(design, options, &report);
+  progress.finish();
+  emit(bytes, o.output, o.preset, context.out);
+  context.out << "wrote " << o.output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
+              << report.panels << " panels (one node each)";
+  if (o.static_t) {
+    context.out << ", static at t = " << format_number(*o.static_t) << '\n';
+    return;
+  }
+  context.out << ", " << report.keyframes << " keyframes over [" << format_number(design.assembly.flexion_interval().lower.t)
+              << ", " << format_number(design.assembly.flexion_interval().upper.t) << "] in "
+              << format_number(o.seconds) << " s" << (o.ping_pong ? " and back" : "") << '\n'
+              << "largest hinge opening between keyframes: " << format_number(report.max_opening) << " ("
+              << format_number(report.max_opening / report.model_size) << " of the model size, tolerance "
+              << format_number(o.hinge_tolerance) << ")\n";
+}
 
 }  // namespace
 
 void add_generate_command(CLI::App& app, Context& context) {
-  auto options = std::make_shared<GenerateOptions>();
+  auto o = std::make_shared<GenerateOptions>();
   CLI::App* sub = app.add_subcommand(
-      "generate", "Build the preset's P-hedron, tube or tube array and write its mesh and folding motion over the "
-                  "whole flexion interval (JSON, docs/formats.md)");
-  sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
-  sub->add_option("-o,--output", options->output, "Output file (.json)")->required();
-  options->parameters.add_options(sub, 41);
-  sub->callback([options, sub, &context] {
-    const Design design = load(context, options->preset);
-    const std::vector<double> ts = options->parameters.values(sub, design.assembly);
+      "generate", "Build the preset's P-hedron, tube or tube array and write it with its folding motion: animated "
+                  "glTF (.glb, .gltf) or the motion JSON (.json) (docs/formats.md)");
+  sub->add_option("preset", o->preset, "Preset file (JSON, docs/presets.md)")->required();
+  sub->add_option("-o,--output", o->output, "Output file: .glb, .gltf or .json")->required();
+  sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
+  sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation)");
+  sub->add_option("--hinge-tolerance", o->hinge_tolerance,
+                  "glTF: largest opening of a hinge outside the node tree between keyframes, relative to the model size")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
+  o->parameters.add_options(sub, 41);
+  sub->callback([o, sub, &context] {
+    const Format format = format_of(o->output);
+    const Design design = load(context, o->preset);
+    if (format != Format::json) {
+      write_gltf(context, design, *o, format == Format::glb);
+      return;
+    }
+    const std::vector<double> ts = o->parameters.values(sub, design.assembly);
     const MotionDocument document = motion_document(design);
-    emit(motion_json(document, ts), options->output, options->preset, context.out);
-    context.out << "wrote " << options->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
+    emit(motion_json(document, ts), o->output, o->preset, context.out);
+    context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
                 << document.labels.size() << " vertices, " << document.faces.size() << " faces, " << ts.size()
                 << " configurations over [" << format_number(ts.front()) << ", " << format_number(ts.back()) << "]\n";
   });

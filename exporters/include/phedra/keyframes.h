@@ -1,0 +1,43 @@
+#pragma once
+// Keyframes for the node animation: the panels' local poses at chosen t, so
+// that interpolating them (slerp of rotations, lerp of root translations) never
+// opens a hinge outside the tree (or a vertex shared between members) by more
+// than a tolerance. Intervals are split at their midpoint until the opening
+// measured at 1/4, 1/2 and 3/4 of every interval is within the tolerance.
+
+#include "phedra/panel_tree.h"
+
+#include <functional>
+#include <vector>
+
+namespace phedra {
+
+struct KeyframeOptions {
+  /// Largest accepted opening, relative to the model size.
+  double relative_tolerance = 1e-3;
+  /// Keyframes to start with, evenly spread over the interval (>= 2).
+  std::size_t initial = 9;
+  /// Never more than this many (the opening reported says what was reached).
+  std::size_t maximum = 4000;
+};
+
+struct Keyframes {
+  std::vector<double> t;
+  std::vector<std::vector<RigidPose>> local;  ///< per keyframe, per panel
+  double max_opening = 0.0;                   ///< largest opening found between keyframes (absolute)
+  double opening_t = 0.0;                     ///< where
+  double tolerance = 0.0;                     ///< absolute
+};
+
+/// `positions(t)` gives the mesh's vertex positions at t; `groups` are sets of
+/// (panel, corner) that must coincide (every mesh vertex's copies, and vertices
+/// shared between members). `progress(done, estimate)` is called as keyframes are added.
+Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(double)>& positions, double lo,
+                           double hi, const std::vector<std::vector<std::pair<std::size_t, int>>>& groups,
+                           double model_size, const KeyframeOptions& options,
+                           const std::function<void(std::size_t)>& progress = {});
+
+/// Local poses interpolated between two keyframes (fraction s in [0, 1]).
+std::vector<RigidPose> interpolate_poses(const std::vector<RigidPose>& a, const std::vector<RigidPose>& b, double s);
+
+}  // namespace phedra
