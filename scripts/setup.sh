@@ -16,8 +16,15 @@ for package in "${packages[@]}"; do
   fi
 done
 
+# Node.js and npm run the client checks of the exports (glTF-Validator, three.js);
+# a machine that already has them (any version >= 18) keeps its own.
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  missing+=(nodejs npm)
+fi
+
 if ((${#missing[@]} == 0)); then
   echo "setup: all packages present"
+  bash "$(dirname "$0")/setup-web.sh"
   exit 0
 fi
 
@@ -30,3 +37,4 @@ echo "setup: installing ${missing[*]}"
 $sudo apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "setup: done"
+bash "$(dirname "$0")/setup-web.sh"

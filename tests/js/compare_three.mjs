@@ -1,0 +1,55 @@
+// Loads a .glb with three.js (GLTFLoader + AnimationMixer), poses it at every
+// keyframe and compares the world positions of every panel's vertices with
+// `phedra sample` at the same t. Exits 1 when a deviation exceeds the tolerance
+// (float32 precision, relative to the model size).
+// usage: node tests/js/compare_three.mjs PHEDRA_BINARY PRESET FILE.glb [relative tolerance]
+import { readFile } from 'node:fs/promises';
+import { execFileSync } from 'node:child_process';
+
+// The same module instance GLTFLoader imports as 'three' (the package's "import" entry).
+const three = new URL('../../web/node_modules/three/', import.meta.url);
+const THREE = await import(new URL('build/three.module.js', three));
+const { GLTFLoader } = await import(new URL('examples/jsm/loaders/GLTFLoader.js', three));
+
+const [phedra, preset, file, tol = '2e-5'] = process.argv.slice(2);
+const bytes = await readFile(file);
+const buffer = bytes.buffer.slice(bytes.byteOffset, bytes.byteOffset + bytes.byteLength);
+const gltf = await new Promise((resolve, reject) => new GLTFLoader().parse(buffer, '', resolve, reject));
+const info = gltf.parser.json.asset.extras.phedra;
+const ts = info.keyframe_t;
+const seconds = info.seconds;
+const size = info.model_size;
+
+const args = ['sample', preset];
+for (const t of ts) args.push('--t', String(t));
+const sample = JSON.parse(execFileSync(phedra, args, { maxBuffer: 1 << 30 }).toString());
+
+const panels = [];
+gltf.scene.traverse((o) => { if (o.isMesh) panels.push(o); });
+const mixer = new THREE.AnimationMixer(gltf.scene);
+const action = mixer.clipAction(gltf.animations[0]);
+action.setLoop(THREE.LoopOnce);   // so that the last keyframe is not wrapped to the first
+action.clampWhenFinished = true;
+action.play();
+const times = gltf.animations[0].tracks[0].times;
+
+let worst = 0, where = '';
+const v = new THREE.Vector3();
+for (let k = 0; k < ts.length; ++k) {
+  mixer.setTime(times[k]);  // setTime rewinds, then advances to this keyframe's time
+  gltf.scene.updateMatrixWorld(true);
+  const expected = sample.samples[k].vertices;
+  for (const mesh of panels) {
+    const ids = mesh.userData.vertices;
+    const position = mesh.geometry.getAttribute('position');
+    for (let c = 0; c < 4; ++c) {
+      v.fromBufferAttribute(position, c).applyMatrix4(mesh.matrixWorld);
+      const [x, y, z] = expected[ids[c]];
+      const d = Math.hypot(v.x - x, v.y - z, v.z + y);  // glTF (x, y, z) = preset (x, z, -y)
+      if (d > worst) { worst = d; where = `${mesh.name} corner ${c} at t = ${ts[k]}`; }
+    }
+  }
+}
+const relative = worst / size;
+console.log(`${file}: ${panels.length} panels, ${ts.length} keyframes (${seconds} s), largest deviation from phedra sample ${worst.toExponential(3)} = ${relative.toExponential(3)} of the model size${where ? ' (' + where + ')' : ''}`);
+process.exit(relative <= Number(tol) ? 0 : 1);
