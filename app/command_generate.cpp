@@ -3,7 +3,9 @@
 #include "commands.h"
 #include "motion_parameters.h"
 #include "phedra/errors.h"
+#include "phedra/fold_export.h"
 #include "phedra/gltf_export.h"
+#include "phedra/mesh_export.h"
 #include "phedra/number_format.h"
 #include "progress.h"
 #include "support.h"
@@ -26,14 +28,17 @@ struct GenerateOptions {
   bool quiet = false;
 };
 
-enum class Format { glb, gltf, json };
+enum class Format { glb, gltf, json, fold, obj, ply };
 
 Format format_of(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".glb") return Format::glb;
   if (ext == ".gltf") return Format::gltf;
   if (ext == ".json") return Format::json;
-  throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf or .json)");
+  if (ext == ".fold") return Format::fold;
+  if (ext == ".obj") return Format::obj;
+  if (ext == ".ply") return Format::ply;
+  throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf, .fold, .obj, .ply or .json)");
 }
 
 void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary) {
@@ -73,14 +78,15 @@ void add_generate_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<GenerateOptions>();
   CLI::App* sub = app.add_subcommand(
       "generate", "Build the preset's P-hedron, tube or tube array and write it with its folding motion: animated "
-                  "glTF (.glb, .gltf) or the motion JSON (.json) (docs/formats.md)");
+                  "glTF (.glb, .gltf), FOLD with frames (.fold), the motion JSON (.json), or a static OBJ/PLY mesh "
+                  "(docs/formats.md)");
   sub->add_option("preset", o->preset, "Preset file (JSON, docs/presets.md)")->required();
-  sub->add_option("-o,--output", o->output, "Output file: .glb, .gltf or .json")->required();
+  sub->add_option("-o,--output", o->output, "Output file: .glb, .gltf, .fold, .json, .obj or .ply")->required();
   sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
-  sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation)");
+  sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
   sub->add_option("--hinge-tolerance", o->hinge_tolerance,
                   "glTF: largest opening of a hinge outside the node tree between keyframes, relative to the model size")
       ->check(CLI::PositiveNumber)
@@ -90,11 +96,27 @@ void add_generate_command(CLI::App& app, Context& context) {
   sub->callback([o, sub, &context] {
     const Format format = format_of(o->output);
     const Design design = load(context, o->preset);
-    if (format != Format::json) {
+    if (format == Format::glb || format == Format::gltf) {
       write_gltf(context, design, *o, format == Format::glb);
       return;
     }
+    if (format == Format::obj || format == Format::ply) {
+      const double t = o->static_t.value_or(design.assembly.t_star());
+      const FlexionInterval& f = design.assembly.flexion_interval();
+      if (!f.contains(t)) throw OutOfIntervalError(t, f.lower.t, f.upper.t);
+      emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply"), o->output, o->preset, context.out);
+      context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\" at t = "
+                  << format_number(t) << '\n';
+      return;
+    }
     const std::vector<double> ts = o->parameters.values(sub, design.assembly);
+    if (format == Format::fold) {
+      emit(fold_json(design, ts), o->output, o->preset, context.out);
+      context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
+                  << ts.size() << " frames over [" << format_number(ts.front()) << ", " << format_number(ts.back())
+                  << "]\n";
+      return;
+    }
     const MotionDocument document = motion_document(design);
     emit(motion_json(document, ts), o->output, o->preset, context.out);
     context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "

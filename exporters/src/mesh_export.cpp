@@ -1,0 +1,51 @@
+#include "phedra/mesh_export.h"
+
+#include "phedra/assembly_mesh.h"
+#include "phedra/errors.h"
+
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+
+#include <cmath>
+#include <sstream>
+
+namespace phedra {
+
+namespace {
+
+struct DoublePrecision : OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+};
+
+}  // namespace
+
+std::string mesh_text(const Design& design, double t, const std::string& extension) {
+  using Mesh = OpenMesh::PolyMesh_ArrayKernelT<DoublePrecision>;
+  // OpenMesh reports on std::cerr; phedra's own messages say what happened.
+  omlog().disable();
+  omout().disable();
+  const Assembly& a = design.assembly;
+  const AssemblyMesh mesh = design.merge ? merged_mesh(a) : separate_mesh(a);
+  const Points positions = mesh.positions(a.evaluate(t));
+  Mesh out;
+  std::vector<Mesh::VertexHandle> handles;
+  handles.reserve(positions.size());
+  for (const Vec3& p : positions) {
+    if (!p.allFinite()) throw Error(ExitCode::internal, "refusing to write a non-finite vertex");
+    handles.push_back(out.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
+  }
+  for (const Quad& q : mesh.faces) {
+    const std::vector<Mesh::VertexHandle> face{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]};
+    if (!out.add_face(face).is_valid()) {
+      throw Error(ExitCode::internal, "OpenMesh refused a face (non-manifold mesh); export a merged or separate design");
+    }
+  }
+  std::ostringstream stream;
+  OpenMesh::IO::Options options;
+  if (!OpenMesh::IO::write_mesh(out, stream, extension, options, 9)) {  // float round trip
+    throw Error(ExitCode::internal, "OpenMesh could not write " + extension);
+  }
+  return stream.str();
+}
+
+}  // namespace phedra

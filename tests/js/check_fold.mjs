@@ -1,0 +1,34 @@
+// Loads FOLD files with the npm `fold` package and checks them: every frame has
+// the vertex count of the base frame, edges and faces are consistent, and the
+// mountain/valley filters agree with the assignments.
+// usage: node tests/js/check_fold.mjs FILE.fold ...
+import { createRequire } from 'node:module';
+import { readFile } from 'node:fs/promises';
+
+const require = createRequire(new URL('../../web/package.json', import.meta.url));
+const FOLD = require('fold');
+
+let failed = false;
+const fail = (file, message) => { console.log(`${file}: ${message}`); failed = true; };
+for (const file of process.argv.slice(2)) {
+  const fold = JSON.parse(await readFile(file, 'utf8'));
+  const vertices = FOLD.filter.numVertices(fold);
+  const edges = FOLD.filter.numEdges(fold);
+  const faces = FOLD.filter.numFaces(fold);
+  if (fold.file_spec !== 1.2) fail(file, `file_spec ${fold.file_spec}`);
+  if (!(vertices > 0 && edges > 0 && faces > 0)) fail(file, 'empty mesh');
+  for (const f of fold.faces_vertices) if (f.some((v) => v < 0 || v >= vertices)) fail(file, 'face index out of range');
+  const assigned = FOLD.filter.mountainEdges(fold).length + FOLD.filter.valleyEdges(fold).length +
+                   FOLD.filter.flatEdges(fold).length + FOLD.filter.boundaryEdges(fold).length;
+  if (assigned !== edges) fail(file, `${assigned} assigned edges of ${edges}`);
+  const frames = fold.file_frames ?? [];
+  for (const [k, frame] of frames.entries()) {
+    if (!frame.frame_inherit || frame.frame_parent !== 0) fail(file, `frame ${k + 1} does not inherit frame 0`);
+    const merged = { ...fold, ...frame };
+    if (FOLD.filter.numVertices(merged) !== vertices) fail(file, `frame ${k + 1} has ${FOLD.filter.numVertices(merged)} vertices, not ${vertices}`);
+    if (frame.edges_foldAngle.length !== edges || frame.edges_assignment.length !== edges) fail(file, `frame ${k + 1}: edge fields of the wrong length`);
+    if (frame.vertices_coords.some((p) => p.length !== 3 || p.some((x) => !Number.isFinite(x)))) fail(file, `frame ${k + 1}: bad coordinates`);
+  }
+  console.log(`${file}: ${vertices} vertices, ${edges} edges, ${faces} faces, ${frames.length + 1} frames`);
+}
+process.exit(failed ? 1 : 0);
