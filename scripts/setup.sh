@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs what phedra needs from Debian packages, only what is missing.
+# Installs what phedra needs from Debian packages, only what is missing
+# (chromium runs the viewer's browser test), then the npm packages of web/.
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
 set -euo pipefail
 
@@ -7,6 +8,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   catch2
+  chromium
 )
 
 missing=()

@@ -1,5 +1,6 @@
 #include "phedra/gltf_export.h"
 
+#include "phedra/assembly_check.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/errors.h"
 #include "phedra/panel_tree.h"
@@ -271,6 +272,16 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     phedra["max_hinge_opening"] = tinygltf::Value(keys.max_opening);
     phedra["hinge_tolerance"] = tinygltf::Value(keys.tolerance);
   }
+  // The check figures over the interval, relative to the model size, for viewers.
+  const AssemblyCheckReport check = check_assembly(assembly, {});
+  tinygltf::Value::Object figures;
+  figures["passed"] = tinygltf::Value(check.passed());
+  figures["planarity"] = tinygltf::Value(check.planarity.value / size);
+  figures["isometry"] = tinygltf::Value(check.isometry.value / size);
+  figures["closure"] = tinygltf::Value(check.closure.value / size);
+  figures["shared_vertices"] = tinygltf::Value(check.shared.value / size);
+  figures["samples"] = tinygltf::Value(static_cast<int>(check.samples));
+  phedra["check"] = tinygltf::Value(figures);
   tinygltf::Value::Object extras;
   extras["phedra"] = tinygltf::Value(phedra);
   model.asset.extras = tinygltf::Value(extras);

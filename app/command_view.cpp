@@ -1,0 +1,51 @@
+// phedra view FILE.glb [--port P]: serves the viewer page and the model on 127.0.0.1.
+
+#include "commands.h"
+#include "phedra/errors.h"
+#include "static_server.h"
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+
+namespace phedra::cli {
+namespace {
+
+struct ViewOptions {
+  std::string file;
+  std::uint16_t port = 8765;
+  std::string web = PHEDRA_WEB_DIR;
+  std::size_t requests = 0;
+};
+
+}  // namespace
+
+void add_view_command(CLI::App& app, Context& context) {
+  auto o = std::make_shared<ViewOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "view", "Serve the viewer page for a .glb on 127.0.0.1 (play and scrub the motion in a browser); prints the "
+              "address and serves until interrupted");
+  sub->add_option("file", o->file, "An animated .glb written by `phedra generate`")->required();
+  sub->add_option("--port", o->port, "Port on 127.0.0.1 (0: any free port)")->capture_default_str();
+  sub->add_option("--web", o->web, "The viewer's directory (web/ with its node_modules)")->capture_default_str();
+  sub->add_option("--requests", o->requests, "Stop after this many requests (0: serve until interrupted)");
+  sub->callback([o, &context] {
+    namespace fs = std::filesystem;
+    if (fs::path(o->file).extension() != ".glb") {
+      throw InvalidInputError("file", "the viewer shows .glb files (write one with `phedra generate PRESET -o FILE.glb`)");
+    }
+    if (!fs::is_regular_file(o->file)) throw IOError(o->file + ": no such file");
+    if (!fs::is_regular_file(fs::path(o->web) / "index.html")) {
+      throw IOError(o->web + ": the viewer page (index.html) is not there; give --web DIR");
+    }
+    if (!fs::is_directory(fs::path(o->web) / "node_modules" / "three")) {
+      throw IOError(o->web + "/node_modules/three is missing: run `bash scripts/setup.sh` first");
+    }
+    StaticServer server(o->web, o->port);
+    server.add_file("/model.glb", o->file);
+    context.out << "viewer for " << o->file << " at http://127.0.0.1:" << server.port() << "/" << std::endl;
+    server.serve(o->requests);
+  });
+}
+
+}  // namespace phedra::cli

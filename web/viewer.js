@@ -1,0 +1,116 @@
+// phedra viewer: loads /model.glb (written by `phedra generate`), plays its
+// folding animation, and lets a slider scrub it. The motion parameter t shown is
+// the glTF time mapped back through the export's extras (keyframe_t, seconds).
+import * as THREE from 'three';
+import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+
+const $ = (id) => document.getElementById(id);
+const container = $('view');
+const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setSize(container.clientWidth, container.clientHeight);
+container.appendChild(renderer.domElement);
+const scene = new THREE.Scene();
+scene.background = new THREE.Color(0x1d2127);
+scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.0));
+const sun = new THREE.DirectionalLight(0xffffff, 1.5);
+sun.position.set(3, 5, 4);
+scene.add(sun);
+const camera = new THREE.PerspectiveCamera(45, container.clientWidth / container.clientHeight, 0.01, 1000);
+const controls = new OrbitControls(camera, renderer.domElement);
+
+const format = (x) => (Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(3) : x.toFixed(4));
+let mixer = null, duration = 0, playing = true, info = null, times = [];
+
+function tAt(seconds) {
+  // Piecewise linear between keyframes, as the animation interpolates.
+  const ts = info.keyframe_t;
+  if (seconds <= times[0]) return ts[0];
+  for (let k = 1; k < times.length; ++k) {
+    if (seconds <= times[k]) return ts[k - 1] + (ts[k] - ts[k - 1]) * (seconds - times[k - 1]) / (times[k] - times[k - 1]);
+  }
+  return ts[ts.length - 1];
+}
+
+function show(seconds) {
+  mixer.setTime(Math.min(seconds, duration));
+  $('t').textContent = format(tAt(seconds));
+}
+
+new GLTFLoader().load('/model.glb', (gltf) => {
+  info = gltf.parser.json.asset.extras?.phedra ?? {};
+  scene.add(gltf.scene);
+  $('title').textContent = info.name ?? 'phedra';
+  $('kind').textContent = info.kind ?? '';
+  $('lo').textContent = format(info.t_lambda);
+  $('hi').textContent = format(info.t_mu);
+  $('tstar').textContent = format(info.t_star);
+  const c = info.check;
+  if (c) {
+    $('figures').textContent = `check over ${c.samples} samples (relative to the model size): planarity ${format(c.planarity)}, ` +
+      `isometry ${format(c.isometry)}, closure ${format(c.closure)}, shared ${format(c.shared_vertices)}` +
+      (info.max_hinge_opening !== undefined ? `; hinge opening between keyframes ${format(info.max_hinge_opening / info.model_size)}` : '');
+  }
+  const box = new THREE.Box3().setFromObject(gltf.scene);
+  const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
+  camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 0.9).multiplyScalar(size));
+  camera.near = size / 1000; camera.far = size * 100; camera.updateProjectionMatrix();
+  controls.target.copy(centre);
+  if (gltf.animations.length) {
+    mixer = new THREE.AnimationMixer(gltf.scene);
+    const action = mixer.clipAction(gltf.animations[0]);
+    action.setLoop(THREE.LoopOnce);
+    action.clampWhenFinished = true;
+    action.play();
+    duration = gltf.animations[0].duration;
+    times = Array.from(gltf.animations[0].tracks[0].times);
+    show(0);
+  } else {
+    $('slider').disabled = $('play').disabled = true;
+    $('t').textContent = format(info.t ?? info.t_star);
+  }
+  $('status').textContent = `${gltf.parser.json.nodes.length} panels` + (duration ? `, ${times.length} keyframes` : ', static');
+  window.phedraViewer.ready = true;
+}, undefined, (error) => { $('status').textContent = `cannot load the model: ${error.message ?? error}`; console.error(error); });
+
+$('slider').addEventListener('input', () => {
+  playing = false;
+  $('play').textContent = 'Play';
+  show(duration * $('slider').value / 1000);
+});
+$('play').addEventListener('click', () => {
+  playing = !playing;
+  $('play').textContent = playing ? 'Pause' : 'Play';
+});
+
+const clock = new THREE.Clock();
+let elapsed = 0;
+renderer.setAnimationLoop(() => {
+  const dt = clock.getDelta();
+  if (mixer && playing) {
+    elapsed = (elapsed + dt) % duration;
+    show(elapsed);
+    $('slider').value = Math.round(1000 * elapsed / duration);
+  }
+  controls.update();
+  renderer.render(scene, camera);
+});
+window.addEventListener('resize', () => {
+  camera.aspect = container.clientWidth / container.clientHeight;
+  camera.updateProjectionMatrix();
+  renderer.setSize(container.clientWidth, container.clientHeight);
+});
+
+// For tests and scripts: the world position of a panel corner, and the state.
+window.phedraViewer = {
+  ready: false,
+  pause() { playing = false; },
+  corner(panel, corner) {
+    let mesh = null, i = 0;
+    scene.traverse((o) => { if (o.isMesh && i++ === panel) mesh = o; });
+    const v = new THREE.Vector3().fromBufferAttribute(mesh.geometry.getAttribute('position'), corner);
+    return v.applyMatrix4(mesh.matrixWorld).toArray();
+  },
+  t() { return $('t').textContent; },
+};
