@@ -26,6 +26,7 @@ struct GenerateOptions {
   std::optional<double> static_t;
   double hinge_tolerance = 1e-3;
   bool quiet = false;
+  bool morph = false;
 };
 
 enum class Format { glb, gltf, json, fold, obj, ply };
@@ -47,6 +48,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   options.seconds = o.seconds;
   options.ping_pong = o.ping_pong;
   options.static_t = o.static_t;
+  options.morph = o.morph;
   options.keyframes.relative_tolerance = o.hinge_tolerance;
   Progress progress(context.err, "keyframes", !o.quiet);
   options.progress = [&](std::size_t count) { progress.update(count); };
@@ -59,7 +61,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   progress.finish();
   emit(bytes, o.output, o.preset, context.out);
   context.out << "wrote " << o.output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
-              << report.panels << " panels (one node each)";
+              << report.panels << (o.morph ? " panels (one mesh, morph targets)" : " panels (one node each)");
   if (o.static_t) {
     context.out << ", static at t = " << format_number(*o.static_t) << '\n';
     return;
@@ -67,9 +69,9 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   context.out << ", " << report.keyframes << " keyframes over [" << format_number(design.assembly.flexion_interval().lower.t)
               << ", " << format_number(design.assembly.flexion_interval().upper.t) << "] in "
               << format_number(o.seconds) << " s" << (o.ping_pong ? " and back" : "") << '\n'
-              << "largest hinge opening between keyframes: " << format_number(report.max_opening) << " ("
-              << format_number(report.max_opening / report.model_size) << " of the model size, tolerance "
-              << format_number(o.hinge_tolerance) << ")\n";
+              << (o.morph ? "largest vertex error between keyframes: " : "largest hinge opening between keyframes: ")
+              << format_number(report.max_opening) << " (" << format_number(report.max_opening / report.model_size)
+              << " of the model size, tolerance " << format_number(o.hinge_tolerance) << ")\n";
 }
 
 }  // namespace
@@ -88,9 +90,12 @@ void add_generate_command(CLI::App& app, Context& context) {
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
   sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
   sub->add_option("--hinge-tolerance", o->hinge_tolerance,
-                  "glTF: largest opening of a hinge outside the node tree between keyframes, relative to the model size")
+                  "glTF: largest opening of a hinge outside the node tree (with --morph: largest vertex error) "
+                  "between keyframes, relative to the model size")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  sub->add_flag("--morph", o->morph,
+                "glTF: morph targets (one per keyframe, sparse one-hot weights, at most 250) instead of a node per panel");
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {

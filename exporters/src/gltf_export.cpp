@@ -74,16 +74,159 @@ std::string face_name(const Assembly& a, const AssemblyMesh& mesh, std::size_t f
          std::to_string(g.column_of(r.vertex)) + ")";
 }
 
-}  // namespace
+/// Keyframes for morph targets: vertex positions interpolate linearly, so the
+/// intervals are split until the chord error at 1/4, 1/2, 3/4 is within tolerance.
+std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
+                                          double tolerance, std::size_t maximum, double& worst, double& worst_t) {
+  std::map<double, Points> frames;
+  for (double t : interval_samples(lo, hi, std::min<std::size_t>(9, maximum))) frames[t] = positions(t);
+  bool refined = true;
+  while (refined) {
+    refined = false;
+    worst = 0.0;
+    std::vector<double> splits;
+    for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) {
+      const auto next = std::next(it);
+      double error = 0.0, where = it->first;
+      for (double s : {0.25, 0.5, 0.75}) {
+        const double t = it->first + s * (next->first - it->first);
+        const Points truth = positions(t);
+        for (std::size_t v = 0; v < truth.size(); ++v) {
+          const double d = ((1 - s) * it->second[v] + s * next->second[v] - truth[v]).norm();
+          if (d > error) {
+            error = d;
+            where = t;
+          }
+        }
+      }
+      if (error > tolerance && frames.size() + splits.size() < maximum) {
+        splits.push_back(0.5 * (it->first + next->first));
+      } else if (error > worst) {
+        worst = error;
+        worst_t = where;
+      }
+    }
+    for (double t : splits) frames[t] = positions(t);
+    refined = !splits.empty();
+  }
+  return frames;
+}
 
-std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfReport* report) {
+/// The morph-target representation: one node, one mesh (a primitive per member),
+/// one target per keyframe, weights animated one-hot (stored sparse).
+void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
+                 const std::function<Points(double)>& positions, const GltfOptions& options, GltfReport& report,
+                 tinygltf::Value::Array& keyframe_t) {
   const Assembly& assembly = design.assembly;
-  const AssemblyMesh mesh = design.merge ? merged_mesh(assembly) : separate_mesh(assembly);
-  auto positions = [&](double t) {
-    Points p = mesh.positions(assembly.evaluate(t));
-    for (Vec3& x : p) x = to_y_up(x);
-    return p;
+  const double lo = assembly.flexion_interval().lower.t, width = assembly.flexion_interval().width();
+  const std::map<double, Points> frames =
+      morph_keyframes(positions, lo, assembly.flexion_interval().upper.t,
+                      options.keyframes.relative_tolerance * assembly.model_size(), options.max_morph_targets,
+                      report.max_opening, report.opening_t);
+  const Points base = positions(assembly.t_star());
+  auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {
+    std::vector<double> lo3(3, INFINITY), hi3(3, -INFINITY);
+    for (std::size_t k = 0; k < data.size(); ++k) {
+      lo3[k % 3] = std::min(lo3[k % 3], static_cast<double>(data[k]));
+      hi3[k % 3] = std::max(hi3[k % 3], static_cast<double>(data[k]));
+    }
+    const int view = buffer.add_view(data, TINYGLTF_TARGET_ARRAY_BUFFER);
+    return buffer.add_accessor(view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, data.size() / 3,
+                               with_bounds ? lo3 : std::vector<double>{}, with_bounds ? hi3 : std::vector<double>{});
   };
+  std::vector<float> base_data;
+  for (const Vec3& p : base) {
+    for (int c = 0; c < 3; ++c) base_data.push_back(checked(p[c]));
+  }
+  const int base_accessor = add_positions(base_data, true);
+  std::vector<int> targets;
+  for (const auto& [t, p] : frames) {
+    std::vector<float> delta;
+    for (std::size_t v = 0; v < p.size(); ++v) {
+      for (int c = 0; c < 3; ++c) delta.push_back(checked(p[v][c] - static_cast<double>(base_data[v * 3 + c])));
+    }
+    targets.push_back(add_positions(delta, true));
+    keyframe_t.push_back(tinygltf::Value(t));
+  }
+  tinygltf::Mesh m;
+  m.name = assembly.name();
+  for (std::size_t member = 0; member < assembly.member_count(); ++member) {
+    std::vector<std::uint32_t> indices;
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+      if (mesh.face_member[f] != member) continue;
+      const Quad& q = mesh.faces[f];
+      for (std::size_t k : {0, 1, 2, 0, 2, 3}) indices.push_back(static_cast<std::uint32_t>(q[k]));
+    }
+    if (indices.empty()) continue;
+    const int view = buffer.add_view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    tinygltf::Primitive primitive;
+    primitive.attributes["POSITION"] = base_accessor;
+    primitive.indices = buffer.add_accessor(view, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
+                                            indices.size());
+    primitive.material = static_cast<int>(member);
+    primitive.mode = TINYGLTF_MODE_TRIANGLES;
+    for (int target : targets) primitive.targets.push_back({{"POSITION", target}});
+    m.primitives.push_back(primitive);
+  }
+  m.weights.assign(targets.size(), 0.0);
+  model.meshes.push_back(m);
+  tinygltf::Node node;
+  node.name = assembly.name();
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.name = assembly.name();
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  const std::size_t count = targets.size();
+  std::vector<float> times;
+  for (const auto& [t, p] : frames) times.push_back(checked((t - lo) / width * options.seconds));
+  const int time_view = buffer.add_view(times, 0);
+  const int time_accessor = buffer.add_accessor(time_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
+                                                times.size(), {times.front()}, {times.back()});
+  // Weights: count x count values, zero but for keyframe k's own target (sparse).
+  std::vector<std::uint32_t> sparse_indices;
+  std::vector<float> ones(count, 1.0f);
+  for (std::size_t k = 0; k < count; ++k) sparse_indices.push_back(static_cast<std::uint32_t>(k * count + k));
+  const int index_view = buffer.add_view(sparse_indices, 0);
+  const int value_view = buffer.add_view(ones, 0);
+  tinygltf::Accessor weights;
+  weights.bufferView = -1;
+  weights.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  weights.type = TINYGLTF_TYPE_SCALAR;
+  weights.count = count * count;
+  weights.sparse.isSparse = true;
+  weights.sparse.count = static_cast<int>(count);
+  weights.sparse.indices.bufferView = index_view;
+  weights.sparse.indices.byteOffset = 0;
+  weights.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  weights.sparse.values.bufferView = value_view;
+  weights.sparse.values.byteOffset = 0;
+  model.accessors.push_back(weights);
+  tinygltf::Animation animation;
+  animation.name = "fold";
+  tinygltf::AnimationSampler sampler;
+  sampler.input = time_accessor;
+  sampler.output = static_cast<int>(model.accessors.size()) - 1;
+  sampler.interpolation = "LINEAR";
+  animation.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 0;
+  channel.target_path = "weights";
+  animation.channels.push_back(channel);
+  model.animations.push_back(animation);
+  report.panels = mesh.faces.size();
+  report.keyframes = count;
+}
+
+/// The node representation: one node per panel on a hinge spanning tree.
+void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
+                 const std::function<Points(double)>& positions, const GltfOptions& options, GltfReport& report,
+                 tinygltf::Value::Array& keyframe_t) {
+  const Assembly& assembly = design.assembly;
   const double rest_t = assembly.t_star();
   const Points reference = positions(rest_t);
   const PanelTree tree(mesh.faces, reference);
@@ -119,23 +262,6 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   } else {
     keys = choose_keyframes(tree, positions, assembly.flexion_interval().lower.t, assembly.flexion_interval().upper.t,
                             groups, size, options.keyframes, options.progress);
-  }
-
-  tinygltf::Model model;
-  model.asset.version = "2.0";
-  model.asset.generator = "phedra";
-  BufferBuilder buffer(model);
-
-  // Materials: one per member, double-sided.
-  for (std::size_t m = 0; m < assembly.member_count(); ++m) {
-    const auto rgb = hsv_to_rgb(std::fmod(0.58 + 0.618034 * static_cast<double>(m), 1.0), 0.55, 0.9);
-    tinygltf::Material material;
-    material.name = assembly.member_name(m);
-    material.doubleSided = true;
-    material.pbrMetallicRoughness.baseColorFactor = {rgb[0], rgb[1], rgb[2], 1.0};
-    material.pbrMetallicRoughness.metallicFactor = 0.0;
-    material.pbrMetallicRoughness.roughnessFactor = 0.8;
-    model.materials.push_back(material);
   }
 
   // Geometry: one shared index accessor, one position accessor per panel (its
@@ -196,7 +322,6 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   model.defaultScene = 0;
 
   // Animation: keyframe times, per node rotations, per root translations.
-  tinygltf::Value::Array keyframe_t;
   if (!options.static_t) {
     const double lo = assembly.flexion_interval().lower.t, width = assembly.flexion_interval().width();
     std::vector<std::size_t> sequence;
@@ -255,6 +380,49 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     model.animations.push_back(animation);
   }
 
+  report.panels = tree.panels();
+  report.keyframes = keys.t.size();
+  report.max_opening = keys.max_opening;
+  report.opening_t = keys.opening_t;
+}
+
+}  // namespace
+
+std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfReport* report) {
+  const Assembly& assembly = design.assembly;
+  const AssemblyMesh mesh = design.merge ? merged_mesh(assembly) : separate_mesh(assembly);
+  auto positions = [&](double t) {
+    Points p = mesh.positions(assembly.evaluate(t));
+    for (Vec3& x : p) x = to_y_up(x);
+    return p;
+  };
+  const double size = assembly.model_size();
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "phedra";
+  BufferBuilder buffer(model);
+  // Materials: one per member, double-sided.
+  for (std::size_t m = 0; m < assembly.member_count(); ++m) {
+    const auto rgb = hsv_to_rgb(std::fmod(0.58 + 0.618034 * static_cast<double>(m), 1.0), 0.55, 0.9);
+    tinygltf::Material material;
+    material.name = assembly.member_name(m);
+    material.doubleSided = true;
+    material.pbrMetallicRoughness.baseColorFactor = {rgb[0], rgb[1], rgb[2], 1.0};
+    material.pbrMetallicRoughness.metallicFactor = 0.0;
+    material.pbrMetallicRoughness.roughnessFactor = 0.8;
+    model.materials.push_back(material);
+  }
+
+  GltfReport figures;
+  figures.tolerance = options.keyframes.relative_tolerance * size;
+  figures.model_size = size;
+  tinygltf::Value::Array keyframe_t;
+  if (options.morph && !options.static_t) {
+    build_morph(model, buffer, design, mesh, positions, options, figures, keyframe_t);
+  } else {
+    build_nodes(model, buffer, design, mesh, positions, options, figures, keyframe_t);
+  }
+
   tinygltf::Value::Object phedra;
   phedra["name"] = tinygltf::Value(assembly.name());
   phedra["kind"] = tinygltf::Value(design.kind);
@@ -269,19 +437,20 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     phedra["seconds"] = tinygltf::Value(options.seconds);
     phedra["ping_pong"] = tinygltf::Value(options.ping_pong);
     phedra["keyframe_t"] = tinygltf::Value(keyframe_t);
-    phedra["max_hinge_opening"] = tinygltf::Value(keys.max_opening);
-    phedra["hinge_tolerance"] = tinygltf::Value(keys.tolerance);
+    phedra["representation"] = tinygltf::Value(std::string(options.morph ? "morph targets" : "nodes"));
+    phedra[options.morph ? "max_vertex_error" : "max_hinge_opening"] = tinygltf::Value(figures.max_opening);
+    phedra[options.morph ? "vertex_tolerance" : "hinge_tolerance"] = tinygltf::Value(figures.tolerance);
   }
   // The check figures over the interval, relative to the model size, for viewers.
   const AssemblyCheckReport check = check_assembly(assembly, {});
-  tinygltf::Value::Object figures;
-  figures["passed"] = tinygltf::Value(check.passed());
-  figures["planarity"] = tinygltf::Value(check.planarity.value / size);
-  figures["isometry"] = tinygltf::Value(check.isometry.value / size);
-  figures["closure"] = tinygltf::Value(check.closure.value / size);
-  figures["shared_vertices"] = tinygltf::Value(check.shared.value / size);
-  figures["samples"] = tinygltf::Value(static_cast<int>(check.samples));
-  phedra["check"] = tinygltf::Value(figures);
+  tinygltf::Value::Object check_figures;
+  check_figures["passed"] = tinygltf::Value(check.passed());
+  check_figures["planarity"] = tinygltf::Value(check.planarity.value / size);
+  check_figures["isometry"] = tinygltf::Value(check.isometry.value / size);
+  check_figures["closure"] = tinygltf::Value(check.closure.value / size);
+  check_figures["shared_vertices"] = tinygltf::Value(check.shared.value / size);
+  check_figures["samples"] = tinygltf::Value(static_cast<int>(check.samples));
+  phedra["check"] = tinygltf::Value(check_figures);
   tinygltf::Value::Object extras;
   extras["phedra"] = tinygltf::Value(phedra);
   model.asset.extras = tinygltf::Value(extras);
@@ -293,12 +462,7 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   }
   std::string bytes = out.str();
   if (report) {
-    report->panels = tree.panels();
-    report->keyframes = keys.t.size();
-    report->max_opening = keys.max_opening;
-    report->opening_t = keys.opening_t;
-    report->tolerance = keys.tolerance;
-    report->model_size = size;
+    *report = figures;
     report->bytes = bytes.size();
   }
   return bytes;

@@ -24,6 +24,11 @@ done
 node "$top/tests/js/check_fold.mjs" "${folds[@]}" || status=1
 "$phedra" generate "$top/presets/grid-3x3.json" -o "$out/grid-3x3.gltf" --ping-pong --quiet >/dev/null
 "$phedra" generate "$top/presets/default.json" -o "$out/static.glb" --at 1.0 --quiet >/dev/null
+for name in grid-3x3 merged-tube; do
+  "$phedra" generate "$top/presets/$name.json" -o "$out/$name-morph.glb" --morph --quiet >/dev/null
+  node "$top/tests/js/compare_three.mjs" "$phedra" "$top/presets/$name.json" "$out/$name-morph.glb" || status=1
+  files+=("$out/$name-morph.glb")
+done
 files+=("$out/grid-3x3.gltf" "$out/static.glb")
 node "$top/tests/js/validate_gltf.mjs" "${files[@]}" || status=1
 if [ "$status" -eq 0 ]; then echo "$(( ${#files[@]} + ${#folds[@]} )) passed, 0 failed"; else echo "export client checks failed"; fi

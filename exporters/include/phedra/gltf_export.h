@@ -20,6 +20,11 @@ struct GltfOptions {
   double seconds = 4.0;               ///< duration of t_lambda -> t_mu
   bool ping_pong = false;             ///< play t_lambda -> t_mu -> t_lambda
   std::optional<double> static_t;     ///< a static export at this t (no animation)
+  /// Morph targets instead of nodes: one mesh, one target per keyframe, sparse
+  /// one-hot weights; keyframes bound the chord error of the vertices (at most
+  /// `max_morph_targets`).
+  bool morph = false;
+  std::size_t max_morph_targets = 250;
   KeyframeOptions keyframes;
   std::function<void(std::size_t)> progress;  ///< called with the keyframe count while choosing them
 };
@@ -27,7 +32,8 @@ struct GltfOptions {
 struct GltfReport {
   std::size_t panels = 0;
   std::size_t keyframes = 0;
-  double max_opening = 0.0;  ///< largest opening of a non-tree hinge between keyframes (absolute)
+  double max_opening = 0.0;  ///< nodes: largest opening of a non-tree hinge between keyframes; morph: largest
+                             ///< distance of an interpolated vertex from its place (absolute)
   double opening_t = 0.0;
   double tolerance = 0.0;    ///< absolute
   double model_size = 0.0;
