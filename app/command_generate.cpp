@@ -51,7 +51,9 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   options.morph = o.morph;
   options.keyframes.relative_tolerance = o.hinge_tolerance;
   Progress progress(context.err, "keyframes", !o.quiet);
-  options.progress = [&](std::size_t count) { progress.update(count); };
+  options.progress = [&](double fraction, std::size_t count) {
+    progress.update(fraction, std::to_string(count) + " keyframes");
+  };
   if (o.static_t && !design.assembly.flexion_interval().contains(*o.static_t)) {
     const FlexionInterval& f = design.assembly.flexion_interval();
     throw OutOfIntervalError(*o.static_t, f.lower.t, f.upper.t);

@@ -1,5 +1,6 @@
 #include "progress.h"
 
+#include <algorithm>
 #include <ostream>
 #include <unistd.h>
 
@@ -10,9 +11,12 @@ Progress::Progress(std::ostream& out, std::string what, bool enabled)
 
 Progress::~Progress() { finish(); }
 
-void Progress::update(std::size_t count) {
+void Progress::update(double fraction, const std::string& detail) {
   if (!active_) return;
-  out_ << "\r" << what_ << ": " << count << std::flush;
+  const int width = 30;
+  const int filled = static_cast<int>(std::clamp(fraction, 0.0, 1.0) * width + 0.5);
+  out_ << "\r" << what_ << " [" << std::string(filled, '#') << std::string(width - filled, '-') << "] "
+       << static_cast<int>(std::clamp(fraction, 0.0, 1.0) * 100 + 0.5) << "%  " << detail << "\033[K" << std::flush;
   shown_ = true;
 }
 

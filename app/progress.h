@@ -1,5 +1,5 @@
 #pragma once
-// A one-line progress display on a terminal (none when standard error is not a
+// A one-line progress bar on a terminal (none when standard error is not a
 // TTY, or when disabled).
 
 #include <iosfwd>
@@ -11,7 +11,8 @@ class Progress {
  public:
   Progress(std::ostream& out, std::string what, bool enabled);
   ~Progress();
-  void update(std::size_t count);
+  /// Draws `what [#####-----]  50%  detail`.
+  void update(double fraction, const std::string& detail);
   void finish();
 
  private:

@@ -44,66 +44,54 @@ std::vector<RigidPose> interpolate_poses(const std::vector<RigidPose>& a, const 
 
 Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(double)>& positions, double lo,
                            double hi, const std::vector<std::vector<std::pair<std::size_t, int>>>& groups,
-                           double model_size, const KeyframeOptions& options,
-                           const std::function<void(std::size_t)>& progress) {
+                           double model_size, const KeyframeOptions& options, const KeyframeProgress& progress) {
   Keyframes result;
   result.tolerance = options.relative_tolerance * model_size;
   std::map<double, std::vector<RigidPose>> frames;
-  for (double t : interval_samples(lo, hi, std::max<std::size_t>(options.initial, 2))) {
-    frames[t] = tree.local_poses(positions(t));
+  const std::vector<double> initial = interval_samples(lo, hi, std::max<std::size_t>(options.initial, 2));
+  for (double t : initial) {
+    std::vector<RigidPose> poses = tree.local_poses(positions(t));
+    if (!frames.empty()) align_signs(frames.rbegin()->second, poses);
+    frames[t] = std::move(poses);
   }
-  auto align_all = [&] {
-    const std::vector<RigidPose>* previous = nullptr;
-    for (auto& [t, poses] : frames) {
-      if (previous) align_signs(*previous, poses);
-      previous = &poses;
+  // Intervals still to measure; an interval that passes is settled for good.
+  std::vector<std::pair<double, double>> pending;
+  for (std::size_t k = 0; k + 1 < initial.size(); ++k) pending.push_back({initial[k], initial[k + 1]});
+  double settled = 0.0;
+  auto measure = [&](double a, double b, double& where) {
+    double worst = 0.0;
+    for (double s : {0.25, 0.5, 0.75}) {
+      const double o = opening(tree, interpolate_poses(frames.at(a), frames.at(b), s), groups);
+      if (o > worst) {
+        worst = o;
+        where = a + s * (b - a);
+      }
     }
+    return worst;
   };
-  align_all();
-  bool refined = true;
-  while (refined && frames.size() < options.maximum) {
-    refined = false;
-    result.max_opening = 0.0;
-    std::vector<double> splits;
-    for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) {
-      const auto next = std::next(it);
-      double worst = 0.0, where = it->first;
-      for (double s : {0.25, 0.5, 0.75}) {
-        const double o = opening(tree, interpolate_poses(it->second, next->second, s), groups);
-        if (o > worst) {
-          worst = o;
-          where = it->first + s * (next->first - it->first);
+  while (!pending.empty()) {
+    std::vector<std::pair<double, double>> next;
+    for (const auto& [a, b] : pending) {
+      double where = a;
+      const double worst = measure(a, b, where);
+      const double mid = 0.5 * (a + b);
+      const bool split = worst > result.tolerance && mid > a && mid < b && frames.size() < options.maximum;
+      if (split) {
+        std::vector<RigidPose> poses = tree.local_poses(positions(mid));
+        align_signs(frames.at(a), poses);
+        frames[mid] = std::move(poses);
+        next.push_back({a, mid});
+        next.push_back({mid, b});
+      } else {
+        settled += b - a;
+        if (worst > result.max_opening) {
+          result.max_opening = worst;
+          result.opening_t = where;
         }
       }
-      const double mid = 0.5 * (it->first + next->first);
-      const bool splittable = mid > it->first && mid < next->first;
-      if (worst > result.tolerance && splittable) {
-        splits.push_back(mid);
-      } else if (worst > result.max_opening) {
-        result.max_opening = worst;
-        result.opening_t = where;
-      }
+      if (progress) progress(settled / (hi - lo), frames.size());
     }
-    for (double t : splits) {
-      if (frames.size() >= options.maximum) break;
-      frames[t] = tree.local_poses(positions(t));
-      refined = true;
-      if (progress) progress(frames.size());
-    }
-    align_all();
-  }
-  if (refined) {
-    // Stopped at the maximum: measure what was reached.
-    result.max_opening = 0.0;
-    for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) {
-      for (double s : {0.25, 0.5, 0.75}) {
-        const double o = opening(tree, interpolate_poses(it->second, std::next(it)->second, s), groups);
-        if (o > result.max_opening) {
-          result.max_opening = o;
-          result.opening_t = it->first + s * (std::next(it)->first - it->first);
-        }
-      }
-    }
+    pending = std::move(next);
   }
   for (auto& [t, poses] : frames) {
     result.t.push_back(t);

@@ -26,7 +26,7 @@ struct GltfOptions {
   bool morph = false;
   std::size_t max_morph_targets = 250;
   KeyframeOptions keyframes;
-  std::function<void(std::size_t)> progress;  ///< called with the keyframe count while choosing them
+  KeyframeProgress progress;  ///< called while the keyframes are chosen (node representation)
 };
 
 struct GltfReport {

@@ -29,13 +29,15 @@ struct Keyframes {
   double tolerance = 0.0;                     ///< absolute
 };
 
+/// Progress: the fraction of [lo, hi] whose keyframes are final, and the keyframe count.
+using KeyframeProgress = std::function<void(double, std::size_t)>;
+
 /// `positions(t)` gives the mesh's vertex positions at t; `groups` are sets of
 /// (panel, corner) that must coincide (every mesh vertex's copies, and vertices
-/// shared between members). `progress(done, estimate)` is called as keyframes are added.
+/// shared between members).
 Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(double)>& positions, double lo,
                            double hi, const std::vector<std::vector<std::pair<std::size_t, int>>>& groups,
-                           double model_size, const KeyframeOptions& options,
-                           const std::function<void(std::size_t)>& progress = {});
+                           double model_size, const KeyframeOptions& options, const KeyframeProgress& progress = {});
 
 /// Local poses interpolated between two keyframes (fraction s in [0, 1]).
 std::vector<RigidPose> interpolate_poses(const std::vector<RigidPose>& a, const std::vector<RigidPose>& b, double s);
