@@ -100,16 +100,7 @@ void check_properties(const PHedron& p) {
 /// a flexion limit (positions are ill-conditioned there: dV/dt is unbounded;
 /// the edge-case tests cover them), are drawn again and counted.
 std::optional<PHedron> construct(std::mt19937_64& rng, const RandomInputShape& shape, int& redrawn) {
-  for (int attempt = 0; attempt < 1000; ++attempt) {
-    try {
-      PHedron p(random_input(rng, shape));
-      const FlexionInterval& f = p.flexion_interval();
-      if (test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) return p;
-    } catch (const InvalidInputError&) {
-    }
-    ++redrawn;
-  }
-  return std::nullopt;
+  return test::draw_phedron([&] { return random_input(rng, shape); }, redrawn);
 }
 
 }  // namespace

@@ -36,22 +36,18 @@ TubeHeights random_heights(std::mt19937_64& rng, TubeType type, bool asymmetric 
 
 /// A random tube whose t* is not within 1e-5 of the model size of a limit.
 std::optional<PHedron> random_tube(std::mt19937_64& rng, TubeType type, int& redrawn, bool asymmetric = false) {
-  for (int attempt = 0; attempt < 500; ++attempt) {
-    test::RandomInputShape shape;
-    shape.strips = 1 + static_cast<std::size_t>(uniform(rng, 0, 30));
-    shape.profile_vertices = 5;
-    shape.smooth = attempt % 2 == 0;
-    try {
-      ControlPolylines input = test::random_input(rng, shape);
-      set_tube_profile(input, type, random_heights(rng, type, asymmetric));
-      PHedron p(std::move(input));
-      const FlexionInterval& f = p.flexion_interval();
-      if (test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) return p;
-    } catch (const InvalidInputError&) {
-    }
-    ++redrawn;
-  }
-  return std::nullopt;
+  int attempt = 0;
+  return test::draw_phedron(
+      [&] {
+        test::RandomInputShape shape;
+        shape.strips = 1 + static_cast<std::size_t>(uniform(rng, 0, 30));
+        shape.profile_vertices = 5;
+        shape.smooth = attempt++ % 2 == 0;
+        ControlPolylines input = test::random_input(rng, shape);
+        set_tube_profile(input, type, random_heights(rng, type, asymmetric));
+        return input;
+      },
+      redrawn, 500);
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "random_input.h"
 
+#include "phedra/errors.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -25,6 +27,19 @@ Mat3 random_rotation(std::mt19937_64& rng) {
 
 bool well_inside_interval(double t_star, double lower, double upper, double model_size) {
   return std::min(t_star - lower, upper - t_star) >= 1e-5 * model_size;
+}
+
+std::optional<PHedron> draw_phedron(const std::function<ControlPolylines()>& make, int& redrawn, int attempts) {
+  for (int attempt = 0; attempt < attempts; ++attempt) {
+    try {
+      PHedron p(make());
+      const FlexionInterval& f = p.flexion_interval();
+      if (well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) return p;
+    } catch (const InvalidInputError&) {
+    }
+    ++redrawn;
+  }
+  return std::nullopt;
 }
 
 std::vector<Sign> sign_pattern(std::size_t n, std::size_t k) {

@@ -6,6 +6,10 @@
 // axis direction).
 
 #include "phedra/control_polylines.h"
+#include "phedra/phedron.h"
+
+#include <functional>
+#include <optional>
 
 #include <random>
 
@@ -31,6 +35,10 @@ ControlPolylines random_input(std::mt19937_64& rng, const RandomInputShape& shap
 /// Positions are ill-conditioned next to a limit (dV/dt is unbounded); property
 /// tests draw again when this fails and count the redraws.
 bool well_inside_interval(double t_star, double lower, double upper, double model_size);
+
+/// Constructs P-hedra from `make()` until one is valid and well inside its
+/// interval (at most `attempts` draws); counts the draws it rejected.
+std::optional<PHedron> draw_phedron(const std::function<ControlPolylines()>& make, int& redrawn, int attempts = 1000);
 
 /// All 2^(n-1) sign patterns of n profile vertices, pattern k: bit b set = '-' at S_{b+1}.
 std::vector<Sign> sign_pattern(std::size_t n, std::size_t k);
