@@ -117,6 +117,29 @@ TEST_CASE("nearly parallel consecutive planes and nearly equal apexes: a result 
   }
 }
 
+TEST_CASE("near-scissor inputs: a result or a clear error, never NaN", "[edge]") {
+  // V_{0,0} at height 0.05; S_0 + S_1 = 2 * 0.05 makes it equidistant from both (scissor).
+  for (double offset : {1e-2, 1e-4, 1e-7, 1e-10, 1e-13, 0.0}) {
+    for (const char* signs : {"+-+-+", "+++++"}) {
+      CAPTURE(offset, signs);
+      ControlPolylines in = default_input();
+      in.apex_heights[1] = 0.1 - in.apex_heights[0] + offset;
+      in.signs = signs_from_string(signs);
+      try {
+        const PHedron p(in);
+        CHECK(all_finite(p.evaluate(p.t_at_fraction(0.5))));
+        const IntervalCheckReport r = check_over_interval(p, {10});
+        CHECK(std::isfinite(r.isometry.value));
+      } catch (const InvalidInputError& e) {
+        CHECK(std::string(signs) == "+-+-+");  // only '-' signs are refused near the scissor case
+        CHECK((std::string(e.what()).find("scissor") != std::string::npos ||
+               std::string(e.what()).find("infinity") != std::string::npos ||
+               std::string(e.what()).find("bifurcation") != std::string::npos));
+      }
+    }
+  }
+}
+
 TEST_CASE("long chains stay planar and isometric", "[edge]") {
   // A screw-symmetric axial design (every profile plane through the axis): every
   // strip congruent to the first, so the interval does not shrink with m.

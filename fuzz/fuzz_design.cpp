@@ -1,0 +1,68 @@
+// libFuzzer harness over the whole pipeline: parse a preset, build the design,
+// evaluate it at parameters taken from the input, check it and export it to
+// memory (glTF nodes and morph, FOLD, motion JSON, OBJ). phedra::Error is the
+// expected answer to a bad input; anything else (a crash, another exception,
+// a sanitizer report, a non-finite number in an output) is a finding.
+
+#include "phedra/assembly_check.h"
+#include "phedra/design.h"
+#include "phedra/errors.h"
+#include "phedra/fold_export.h"
+#include "phedra/gltf_export.h"
+#include "phedra/mesh_export.h"
+#include "phedra/motion_document.h"
+#include "phedra/preset.h"
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <string_view>
+
+namespace {
+
+/// Fractions in [0, 1] from the input's last bytes (deterministic per input).
+double fraction(const std::uint8_t* data, std::size_t size, std::size_t k) {
+  if (size == 0) return 0.5;
+  return static_cast<double>(data[(size - 1 - k % size)]) / 255.0;
+}
+
+void must(bool ok) {
+  if (!ok) std::abort();
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace phedra;
+  try {
+    const Design design = design_from_json(parse_json_text(std::string_view(reinterpret_cast<const char*>(data), size)));
+    const Assembly& a = design.assembly;
+    if (a.total_vertex_count() > 4000) return 0;  // big but valid: not what this harness looks for
+    const FlexionInterval& f = a.flexion_interval();
+    must(f.lower.t < a.t_star() && a.t_star() < f.upper.t);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const AssemblyConfiguration c = a.evaluate(a.t_at_fraction(fraction(data, size, k)));
+      for (const Points& member : c.members) {
+        for (const Vec3& p : member) must(p.allFinite());
+      }
+    }
+    CheckOptions options;
+    options.samples = 5;
+    const AssemblyCheckReport report = check_assembly(a, options);
+    must(!std::isnan(report.planarity.value) || !report.passed());
+    GltfOptions gltf;
+    gltf.keyframes.maximum = 64;
+    gltf_bytes(design, gltf);
+    gltf.morph = true;
+    gltf.max_morph_targets = 16;
+    gltf_bytes(design, gltf);
+    const std::vector<double> ts{f.lower.t, a.t_star(), f.upper.t};
+    fold_json(design, ts);
+    motion_json(motion_document(design), ts);
+    mesh_text(design, a.t_star(), ".obj");
+  } catch (const Error&) {
+    // A clear answer to a bad input (or an internal error refusing a non-finite
+    // number, which the writers raise on purpose: treat as a finding).
+  }
+  return 0;
+}
