@@ -107,7 +107,7 @@ StripMargin PHedron::canonical_margin(double tc) const {
   LinkageStart start;
   double margin;
   if (!linkage_.start(tc, start, margin)) return {-1.0, 0};
-  StripMargin worst = chain_.trace(start.s0, start.s1, Vec3(start.x, 0, 0), nullptr, 0);
+  StripMargin worst = chain_.trace(start.s0, start.s1, Vec3(start.x, 0, 0));
   if (worst.value >= 0.0 && margin < worst.value) worst = {margin, 0};
   return worst;
 }
@@ -175,10 +175,13 @@ void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::
 }
 
 std::vector<double> PHedron::apex_heights(double t) const {
-  std::vector<double> heights;
-  run_rows(t, [&](std::size_t i, const double* s, const Vec3*, const Vec3*) {
-    if (i == 0) heights.assign(s, s + motion_.columns() + 1);
-  });
+  if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
+  LinkageStart start;
+  double margin;
+  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
+  std::vector<double> heights(motion_.columns() + 1);
+  Points row(motion_.columns());
+  motion_.complete_first_row(start.s0, start.s1, Vec3(start.x, 0, 0), heights.data(), row.data());
   for (double& h : heights) h = frame_.height_to_user(h);
   return heights;
 }

@@ -57,7 +57,7 @@ bool StripChain::advance(std::size_t i, double s0, double s1, const Vec3& p, Vec
   return radius2 > 0.0 && rho2 > 0.0;
 }
 
-StripMargin StripChain::trace(double s0, double s1, const Vec3& first, Vec3* column, std::size_t stride) const {
+StripMargin StripChain::trace(double s0, double s1, const Vec3& first) const {
   StripMargin worst;
   Vec3 previous = first;
   Vec3 next;
@@ -65,7 +65,6 @@ StripMargin StripChain::trace(double s0, double s1, const Vec3& first, Vec3* col
     double margin;
     if (!advance(i, s0, s1, previous, next, margin)) return {-1.0, i};
     if (margin < worst.value) worst = {margin, i};
-    if (column) column[i * stride] = next;
     previous = next;
   }
   return worst;

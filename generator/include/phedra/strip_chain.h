@@ -35,9 +35,9 @@ class StripChain {
   bool advance(std::size_t i, double s0, double s1, const Vec3& previous, Vec3& out, double& margin,
                bool clamp = false) const;
 
-  /// The whole trajectory column (first entry V_{0,0}(t) given); returns the
-  /// smallest margin, or the first strip that fails (value < 0).
-  StripMargin trace(double s0, double s1, const Vec3& first, Vec3* column, std::size_t stride) const;
+  /// Follows the trajectory from V_{0,0}(t) = first; returns the smallest margin,
+  /// or the first strip that fails (value < 0).
+  StripMargin trace(double s0, double s1, const Vec3& first) const;
 
  private:
   // index i - 1 for strip i
