@@ -24,7 +24,7 @@ void add_check_command(CLI::App& app, Context& context) {
   CLI::App* sub = app.add_subcommand(
       "check", "Check planarity, isometry, tube closure and shared vertices over the whole flexion interval (dense "
                "samples, both limits and t*); exit 1 when a figure exceeds the tolerance");
-  sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
+  add_preset_argument(sub, options->preset);
   sub->add_option("--samples", options->check.samples, "Evenly spaced samples of [t_lambda, t_mu], limits included")
       ->check(CLI::Range(2, 10000000))
       ->capture_default_str();

@@ -84,7 +84,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       "generate", "Build the preset's P-hedron, tube or tube array and write it with its folding motion: animated "
                   "glTF (.glb, .gltf), FOLD with frames (.fold), the motion JSON (.json), or a static OBJ/PLY mesh "
                   "(docs/formats.md)");
-  sub->add_option("preset", o->preset, "Preset file (JSON, docs/presets.md)")->required();
+  add_preset_argument(sub, o->preset);
   sub->add_option("-o,--output", o->output, "Output file: .glb, .gltf, .fold, .json, .obj or .ply")->required();
   sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
       ->check(CLI::PositiveNumber)

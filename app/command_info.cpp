@@ -108,7 +108,7 @@ void add_info_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Show what the preset builds, t*, the motion case, the flexion interval "
                                               "with its limits, the mesh counts and the figures at t*");
-  sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
+  add_preset_argument(sub, options->preset);
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
     const Design design = load(context, options->preset);

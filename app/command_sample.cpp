@@ -21,7 +21,7 @@ void add_sample_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<SampleOptions>();
   CLI::App* sub = app.add_subcommand(
       "sample", "Vertex positions at chosen motion parameters t, as JSON {labels, faces, samples: [{t, vertices}]}");
-  sub->add_option("preset", options->preset, "Preset file (JSON, docs/presets.md)")->required();
+  add_preset_argument(sub, options->preset);
   options->parameters.add_options(sub);
   sub->add_option("-o,--output", options->output, "Output file (default: standard output)");
   sub->callback([options, sub, &context] {

@@ -6,6 +6,10 @@
 
 namespace phedra::cli {
 
+void add_preset_argument(CLI::App* command, std::string& preset) {
+  command->add_option("preset", preset, "Preset file (JSON, docs/presets.md)")->required();
+}
+
 Design load(Context& context, const std::string& path) {
   context.preset = path;
   return load_design(path);

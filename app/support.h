@@ -9,6 +9,9 @@
 
 namespace phedra::cli {
 
+/// Registers the PRESET positional argument every design command takes.
+void add_preset_argument(CLI::App* command, std::string& preset);
+
 /// Loads and builds the design of a preset file; records the path in the context
 /// so that errors name it.
 Design load(Context& context, const std::string& path);
