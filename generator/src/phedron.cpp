@@ -144,16 +144,63 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
     throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
                                         std::to_string(vertex_count()));
   }
+  if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
+  // The recursions of the motion are affine, so after column 0 (the strip chain,
+  // canonical frame) every row runs in the user's frame and goes straight to `out`:
+  // per vertex one step of the rho recursion and one of the general-net recursion.
   const std::size_t n = motion_.columns();
-  const NetWriter writer(frame_, closed_, n, out);
-  if (gap) *gap = {};
-  run_rows(t, [&](std::size_t i, const double* s, const Vec3* axial, const Vec3* general) {
-    writer.write(i, s, axial, general);
-    if (gap && closed_) {
-      const double d = (general[n - 1] - general[0]).norm();
-      if (!(d <= gap->value)) *gap = {d, i};
+  LinkageStart start;
+  double margin;
+  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
+  std::vector<double> s(n + 1);
+  Points scratch(4 * n + 1);
+  Vec3* const apex = scratch.data();       // S_0..S_n, user frame
+  Vec3* const axial = apex + n + 1;        // axial row, user frame
+  Vec3* const general = axial + n;         // general row, user frame
+  Vec3* const first_row = general + n;     // row 0, canonical frame
+  Vec3 column0(start.x, 0, 0);
+  motion_.complete_first_row(start.s0, start.s1, column0, s.data(), first_row);
+  const Vec3 axis = frame_.rotation().row(2).transpose();
+  for (std::size_t j = 0; j <= n; ++j) apex[j] = frame_.origin() + s[j] * axis;
+  for (std::size_t j = 0; j < n; ++j) general[j] = axial[j] = frame_.point_to_user(first_row[j]);
+
+  const std::size_t width = topology_.columns();
+  auto write_row = [&](std::size_t i) {
+    Vec3* row = out.data() + i * width;
+    if (closed_) {
+      std::copy(general, general + n - 1, row);
+      if (gap) {
+        const double d = (general[n - 1] - general[0]).norm();
+        if (!(d <= gap->value)) *gap = {d, i};
+      }
+      return;
     }
-  });
+    row[0] = general[0] + (apex[0] - axial[0]);
+    std::copy(general, general + n, row + 1);
+    row[n + 1] = general[n - 1] + (apex[n] - axial[n - 1]);
+  };
+  if (gap) *gap = {};
+  write_row(0);
+  for (std::size_t i = 1; i < motion_.rows(); ++i) {
+    Vec3 next;
+    if (!chain_.advance(i, s[0], s[1], column0, next, margin, true)) {
+      throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
+                                          format_number(t) + " inside the flexion interval");
+    }
+    column0 = next;
+    const double* rho = motion_.row_ratios(i);
+    const double* q = motion_.row_scales(i);
+    Vec3 a = frame_.point_to_user(next);
+    general[0] += q[0] * (a - axial[0]);
+    axial[0] = a;
+    for (std::size_t j = 1; j < n; ++j) {
+      const Vec3& c = apex[j];
+      a = c + rho[j - 1] * (a - c);
+      general[j] += q[j] * (a - axial[j]);
+      axial[j] = a;
+    }
+    write_row(i);
+  }
 }
 
 Points PHedron::evaluate(double t) const {

@@ -20,6 +20,10 @@ class NetMotion {
   std::size_t rows() const { return rows_; }
   std::size_t columns() const { return columns_; }
 
+  /// rho_{i,0..n-2} and the transversal scales q_{i,0..n-1} of row i.
+  const double* row_ratios(std::size_t i) const { return &ratios_[i * (columns_ - 1)]; }
+  const double* row_scales(std::size_t i) const { return &scales_[i * columns_]; }
+
   /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
   /// s[0], s[1] and the row's first vertex (in the plane pi_0).
   void complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const;
