@@ -29,6 +29,30 @@ CanonicalInput to_canonical(const ControlPolylines& in, const CanonicalFrame& fr
   return c;
 }
 
+/// One row of the motion in the user's frame, columns 0..count-1: the rho
+/// recursion A_j = S_j + rho_{j-1} (A_{j-1} - S_j) from A_0 = first, and the
+/// general net G_j = previous_G_j + q_j (A_j - previous_A_j); `axial` holds the
+/// previous row on entry and this row on exit. Returns A_{count-1}.
+Vec3 advance_row(const Vec3& first, const Vec3* __restrict apex, const double* __restrict rho,
+                 const double* __restrict q, std::size_t count, const Vec3* __restrict previous,
+                 Vec3* __restrict general, Vec3* __restrict axial) {
+  double x = first.x(), y = first.y(), z = first.z();
+  for (std::size_t j = 0; j < count; ++j) {
+    if (j > 0) {
+      const double r = rho[j - 1];
+      const Vec3& c = apex[j];
+      x = c.x() + r * (x - c.x());
+      y = c.y() + r * (y - c.y());
+      z = c.z() + r * (z - c.z());
+    }
+    Vec3& old = axial[j];
+    general[j] = Vec3(previous[j].x() + q[j] * (x - old.x()), previous[j].y() + q[j] * (y - old.y()),
+                      previous[j].z() + q[j] * (z - old.z()));
+    old = Vec3(x, y, z);
+  }
+  return Vec3(x, y, z);
+}
+
 ClosureGap closure_gap_of(const Points& general, std::size_t rows, std::size_t n) {
   ClosureGap gap;
   for (std::size_t i = 0; i < rows; ++i) {
@@ -153,34 +177,38 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
   double margin;
   if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
   std::vector<double> s(n + 1);
-  Points scratch(4 * n + 1);
-  Vec3* const apex = scratch.data();       // S_0..S_n, user frame
-  Vec3* const axial = apex + n + 1;        // axial row, user frame
-  Vec3* const general = axial + n;         // general row, user frame
-  Vec3* const first_row = general + n;     // row 0, canonical frame
+  Points scratch(3 * n + 1);
+  Vec3* const apex = scratch.data();    // S_0..S_n, user frame
+  Vec3* const axial = apex + n + 1;     // axial row, user frame
+  Vec3* const first_row = axial + n;    // row 0, canonical frame
   Vec3 column0(start.x, 0, 0);
   motion_.complete_first_row(start.s0, start.s1, column0, s.data(), first_row);
   const Vec3 axis = frame_.rotation().row(2).transpose();
   for (std::size_t j = 0; j <= n; ++j) apex[j] = frame_.origin() + s[j] * axis;
-  for (std::size_t j = 0; j < n; ++j) general[j] = axial[j] = frame_.point_to_user(first_row[j]);
+  for (std::size_t j = 0; j < n; ++j) axial[j] = frame_.point_to_user(first_row[j]);
 
+  // The general net is written in place: row i of `out` from row i - 1. A closed
+  // profile stores columns 0..n-2; its last column (= column 0 up to the closure
+  // gap) is carried in `last`.
   const std::size_t width = topology_.columns();
-  auto write_row = [&](std::size_t i) {
-    Vec3* row = out.data() + i * width;
+  const std::size_t shift = closed_ ? 0 : 1;
+  const std::size_t stored = closed_ ? n - 1 : n;
+  Vec3 last = axial[n - 1];
+  auto finish_row = [&](std::size_t i, Vec3* general) {
     if (closed_) {
-      std::copy(general, general + n - 1, row);
       if (gap) {
-        const double d = (general[n - 1] - general[0]).norm();
+        const double d = (last - general[0]).norm();
         if (!(d <= gap->value)) *gap = {d, i};
       }
       return;
     }
-    row[0] = general[0] + (apex[0] - axial[0]);
-    std::copy(general, general + n, row + 1);
-    row[n + 1] = general[n - 1] + (apex[n] - axial[n - 1]);
+    general[-1] = general[0] + (apex[0] - axial[0]);
+    general[n] = general[n - 1] + (apex[n] - axial[n - 1]);
   };
   if (gap) *gap = {};
-  write_row(0);
+  Vec3* general = out.data() + shift;
+  std::copy(axial, axial + stored, general);
+  finish_row(0, general);
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
     Vec3 next;
     if (!chain_.advance(i, s[0], s[1], column0, next, margin, true)) {
@@ -190,16 +218,17 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
     column0 = next;
     const double* rho = motion_.row_ratios(i);
     const double* q = motion_.row_scales(i);
-    Vec3 a = frame_.point_to_user(next);
-    general[0] += q[0] * (a - axial[0]);
-    axial[0] = a;
-    for (std::size_t j = 1; j < n; ++j) {
-      const Vec3& c = apex[j];
-      a = c + rho[j - 1] * (a - c);
-      general[j] += q[j] * (a - axial[j]);
-      axial[j] = a;
+    const Vec3* previous = general;
+    general += width;
+    const Vec3 a0 = frame_.point_to_user(next);
+    const Vec3 a = advance_row(a0, apex, rho, q, stored, previous, general, axial);
+    if (closed_) {
+      const Vec3& c = apex[n - 1];
+      const Vec3 end = c + rho[n - 2] * (a - c);
+      last += q[n - 1] * (end - axial[n - 1]);
+      axial[n - 1] = end;
     }
-    write_row(i);
+    finish_row(i, general);
   }
 }
 
