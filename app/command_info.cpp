@@ -59,7 +59,7 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
   if (a.member_count() == 1) {
     j["rows"] = g.rows();
     j["columns"] = g.columns();
-    j["edges"] = g.edges().size();
+    j["edges"] = g.edge_count();
   }
   if (!at_star.warning.empty()) j["warning"] = at_star.warning;
   return j;
@@ -77,8 +77,8 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << " vertices each, signs " << signs_to_string(p.input().signs) << '\n';
   if (a.member_count() == 1) {
     out << "mesh:              " << g.vertex_count() << " vertices (" << g.rows() << " x " << g.columns()
-        << (p.closed() ? " grid, cyclic columns), " : " grid with boundary columns), ") << g.faces().size()
-        << " faces, " << g.edges().size() << " edges\n";
+        << (p.closed() ? " grid, cyclic columns), " : " grid with boundary columns), ") << g.face_count()
+        << " faces, " << g.edge_count() << " edges\n";
   } else {
     out << "members:           " << a.member_count() << " (" << a.member_name(0) << ", ..., "
         << a.member_name(a.member_count() - 1) << "), " << a.shared_vertices().size() << " shared vertex groups\n"

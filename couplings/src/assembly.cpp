@@ -11,7 +11,9 @@
 namespace phedra {
 
 Assembly::Assembly(PHedron base, std::string base_name) : base_(std::move(base)) {
-  base_reference_ = {base_.axial_net().vertices, base_.parallel_net().vertices, base_.canonical_input().heights};
+  const AxialNet axial = base_.axial_net();
+  base_reference_ = {axial.vertices, build_parallel_net(axial, base_.canonical_input().trajectory).vertices,
+                     base_.canonical_input().heights};
   Member m;
   m.name = std::move(base_name);
   m.closed = base_.closed();

@@ -3,23 +3,34 @@
 namespace phedra {
 
 GridTopology::GridTopology(std::size_t rows, std::size_t columns, bool cyclic)
-    : rows_(rows), columns_(columns), cyclic_(cyclic) {
+    : rows_(rows), columns_(columns), cyclic_(cyclic) {}
+
+std::vector<Quad> GridTopology::faces() const {
+  std::vector<Quad> faces(face_count());
+  for (std::size_t k = 0; k < faces.size(); ++k) faces[k] = face(k);
+  return faces;
+}
+
+std::vector<Segment> GridTopology::diagonals() const {
+  std::vector<Segment> diagonals(face_count());
+  for (std::size_t k = 0; k < diagonals.size(); ++k) {
+    const Quad f = face(k);
+    diagonals[k] = {f[0], f[2]};
+  }
+  return diagonals;
+}
+
+std::vector<Segment> GridTopology::edges() const {
+  std::vector<Segment> edges;
+  edges.reserve(edge_count());
   const std::size_t face_cols = face_columns();
-  faces_.reserve((rows - 1) * face_cols);
-  diagonals_.reserve((rows - 1) * face_cols);
-  for (std::size_t i = 0; i + 1 < rows; ++i) {
-    for (std::size_t c = 0; c < face_cols; ++c) {
-      const std::size_t next = (c + 1) % columns;
-      faces_.push_back({index(i, c), index(i, next), index(i + 1, next), index(i + 1, c)});
-      diagonals_.push_back({index(i, c), index(i + 1, next)});
-    }
+  for (std::size_t i = 0; i < rows_; ++i) {
+    for (std::size_t c = 0; c < face_cols; ++c) edges.push_back({index(i, c), index(i, (c + 1) % columns_)});
   }
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t c = 0; c < face_cols; ++c) edges_.push_back({index(i, c), index(i, (c + 1) % columns)});
+  for (std::size_t i = 0; i + 1 < rows_; ++i) {
+    for (std::size_t c = 0; c < columns_; ++c) edges.push_back({index(i, c), index(i + 1, c)});
   }
-  for (std::size_t i = 0; i + 1 < rows; ++i) {
-    for (std::size_t c = 0; c < columns; ++c) edges_.push_back({index(i, c), index(i + 1, c)});
-  }
+  return edges;
 }
 
 }  // namespace phedra

@@ -11,12 +11,11 @@ namespace phedra {
 
 const char* to_string(MotionCase c) { return c == MotionCase::a ? "a" : "b"; }
 
-Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
+Linkage::Linkage(const Points& column, const CanonicalInput& in) {
   const double s0 = in.heights[0], s1 = in.heights[1];
   const double eps = tolerance::scaled(tolerance::scissor, in.scale);
   bool decided = false;
-  for (std::size_t i = 0; i < axial.rows; ++i) {
-    const Vec3& v = axial.vertex(i, 0);
+  for (const Vec3& v : column) {
     const double d0 = (v - Vec3(0, 0, s0)).norm();
     const double d1 = (v - Vec3(0, 0, s1)).norm();
     if (std::abs(d0 - d1) <= eps) continue;  // scissor row: decided by a later row
@@ -29,7 +28,7 @@ Linkage::Linkage(const AxialNet& axial, const CanonicalInput& in) {
     throw InvalidInputError("", "every trajectory vertex is equidistant from S_0 and S_1: the motion "
                                 "parameter is undefined (the trajectory is orthogonal to the axis)");
   }
-  const Vec3& v00 = axial.vertex(0, 0);
+  const Vec3& v00 = column[0];
   const double moving = case_ == MotionCase::a ? s0 : s1;
   const double other = case_ == MotionCase::a ? s1 : s0;
   moving_radius_ = std::hypot(v00.x(), moving - v00.z());

@@ -11,6 +11,25 @@ NetMotion::NetMotion(const AxialNet& axial, const ParallelNet& parallel, const s
   for (Sign s : signs) mirror_.push_back(s == Sign::plus ? 1.0 : -1.0);
 }
 
+NetMotion::NetMotion(const CanonicalInput& in, const AxialColumn& column, const Points& trajectory,
+                     const RowSink& sink)
+    : rows_(column.vertices.size()), columns_(in.heights.size() - 1) {
+  const std::size_t n = columns_;
+  ratios_.assign(rows_ * (n - 1), 0.0);
+  scales_.assign(rows_ * n, 1.0);
+  for (Sign s : in.signs) mirror_.push_back(s == Sign::plus ? 1.0 : -1.0);
+  Points previous_axial(n), axial(n), previous_general(n), general(n);
+  for (std::size_t i = 0; i < rows_; ++i) {
+    std::swap(previous_axial, axial);
+    std::swap(previous_general, general);
+    axial[0] = column.vertices[i];
+    build_axial_row(in, i, axial.data(), &ratios_[i * (n - 1)]);
+    build_parallel_row(i, n, previous_axial.data(), axial.data(), previous_general.data(), trajectory[i],
+                       column.edge_scale[i], general.data(), &scales_[i * n]);
+    sink(i, axial.data(), general.data());
+  }
+}
+
 void NetMotion::complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const {
   s[0] = s0;
   s[1] = s1;

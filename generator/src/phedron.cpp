@@ -53,35 +53,28 @@ Vec3 advance_row(const Vec3& first, const Vec3* __restrict apex, const double* _
   return Vec3(x, y, z);
 }
 
-ClosureGap closure_gap_of(const Points& general, std::size_t rows, std::size_t n) {
-  ClosureGap gap;
-  for (std::size_t i = 0; i < rows; ++i) {
-    const double d = (general[i * n + n - 1] - general[i * n]).norm();
-    if (!(d <= gap.value)) gap = {d, i};
-  }
-  return gap;
-}
-
 }  // namespace
 
 PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   validate(input_);
   frame_ = CanonicalFrame(input_);
   canonical_ = to_canonical(input_, frame_);
-  axial_ = build_axial_net(canonical_);
-  parallel_ = build_parallel_net(axial_, canonical_.trajectory);
-  motion_ = NetMotion(axial_, parallel_, canonical_.signs);
-  linkage_ = Linkage(axial_, canonical_);
-  chain_ = StripChain(axial_, canonical_.heights[0], canonical_.heights[1]);
+  // The nets are built row by row straight into reference(): besides it, only
+  // the constants of the motion are stored (memory: 40 bytes a vertex).
+  const AxialColumn column = build_axial_column(canonical_);
   closed_ = has_closed_profile(input_);
-  const std::size_t n = motion_.columns();
-  topology_ = GridTopology(axial_.rows, NetWriter::columns(closed_, n), closed_);
-
+  const std::size_t n = canonical_.heights.size() - 1;
+  topology_ = GridTopology(column.vertices.size(), NetWriter::columns(closed_, n), closed_);
   reference_.assign(vertex_count(), Vec3::Zero());
-  NetWriter writer(frame_, closed_, n, reference_);
-  for (std::size_t i = 0; i < axial_.rows; ++i) {
-    writer.write(i, canonical_.heights.data(), &axial_.vertices[i * n], &parallel_.vertices[i * n]);
-  }
+  const NetWriter writer(frame_, closed_, n, reference_);
+  ClosureGap gap;
+  motion_ = NetMotion(canonical_, column, canonical_.trajectory, [&](std::size_t i, const Vec3* axial, const Vec3* general) {
+    writer.write(i, canonical_.heights.data(), axial, general);
+    const double d = (general[n - 1] - general[0]).norm();
+    if (!(d <= gap.value)) gap = {d, i};
+  });
+  linkage_ = Linkage(column.vertices, canonical_);
+  chain_ = StripChain(column.vertices, canonical_.heights[0], canonical_.heights[1]);
   for (const Vec3& p : reference_) {
     if (!p.allFinite()) {
       throw InvalidInputError("", "the construction overflows (a vertex is not finite): the input is too "
@@ -90,7 +83,6 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   }
   model_size_ = bounding_box_diagonal(reference_);
   if (closed_) {
-    const ClosureGap gap = closure_gap_of(parallel_.vertices, axial_.rows, n);
     if (!(gap.value <= tolerance::check_relative * model_size_)) {
       throw InvalidInputError("apex_heights", "the profile [" + std::to_string(n - 1) +
                                                   " sides, heights repeating their first two] does not close at t*: "

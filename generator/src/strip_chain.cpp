@@ -8,16 +8,16 @@
 
 namespace phedra {
 
-StripChain::StripChain(const AxialNet& axial, double s0, double s1) {
-  const std::size_t m = axial.rows - 1;
+StripChain::StripChain(const Points& column, double s0, double s1) {
+  const std::size_t m = column.size() - 1;
   r0_squared_.resize(m);
   r1_squared_.resize(m);
   rp_squared_.resize(m);
   branch_.resize(m);
   const Vec3 apex0(0, 0, s0), apex1(0, 0, s1);
   for (std::size_t i = 1; i <= m; ++i) {
-    const Vec3& x = axial.vertex(i, 0);
-    const Vec3& p = axial.vertex(i - 1, 0);
+    const Vec3& x = column[i];
+    const Vec3& p = column[i - 1];
     r0_squared_[i - 1] = (x - apex0).squaredNorm();
     r1_squared_[i - 1] = (x - apex1).squaredNorm();
     rp_squared_[i - 1] = (x - p).squaredNorm();

@@ -37,6 +37,20 @@ struct AxialNet {
 /// parallel to its profile plane, when an axial trajectory vertex falls on the
 /// axis, in the scissor case with a '-' sign (paper, Remark 1), or when sigma-
 /// sends a vertex to (near) infinity (naming i and j).
+/// Step 1 alone: column 0 of the axial net, A_{i,0}, with its edge scales.
+/// Throws InvalidInputError for a degenerate trajectory and for '-' signs with a
+/// scissor-like row (paper, Remark 1).
+struct AxialColumn {
+  Points vertices;                 ///< A_{i,0}, i = 0..m
+  std::vector<double> edge_scale;  ///< as AxialNet::edge_scale
+};
+AxialColumn build_axial_column(const CanonicalInput& input);
+
+/// Step 2 for row i: from row[0] = A_{i,0}, fills row[1..n-1] and ratios[0..n-2]
+/// (rho_{i,j}). Throws InvalidInputError when a '-' apex sends a vertex to infinity.
+void build_axial_row(const CanonicalInput& input, std::size_t i, Vec3* row, double* ratios);
+
+/// The whole axial net (steps 1 and 2).
 AxialNet build_axial_net(const CanonicalInput& input);
 
 }  // namespace phedra

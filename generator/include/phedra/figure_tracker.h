@@ -41,6 +41,8 @@ class FigureTracker {
  private:
   const GridTopology& topology_;
   std::string prefix_;
+  std::vector<Quad> faces_;
+  std::size_t edge_count_ = 0;
   std::vector<Segment> segments_;  ///< edges, then one diagonal per face
   std::vector<double> reference_lengths_;
   WorstCase planarity_, isometry_;

@@ -27,21 +27,28 @@ class GridTopology {
   std::size_t row_of(std::size_t vertex) const { return vertex / columns_; }
   std::size_t column_of(std::size_t vertex) const { return vertex % columns_; }
 
+  /// The lists below follow from rows, columns and cyclic alone, so they are not
+  /// stored (a 10^6-vertex grid would need 80 bytes a vertex for them): each call
+  /// builds its list; face(k), edge(k) and diagonal(k) give single entries.
+
   /// Quads (i, c), (i, c+1), (i+1, c+1), (i+1, c): face (i, c) is faces()[i * face_columns() + c].
-  const std::vector<Quad>& faces() const { return faces_; }
+  std::vector<Quad> faces() const;
   std::size_t face_columns() const { return cyclic_ ? columns_ : columns_ - 1; }
+  std::size_t face_count() const { return (rows_ - 1) * face_columns(); }
+  Quad face(std::size_t k) const {
+    const std::size_t i = k / face_columns(), c = k % face_columns(), next = (c + 1) % columns_;
+    return {index(i, c), index(i, next), index(i + 1, next), index(i + 1, c)};
+  }
   /// Every hinge and boundary edge once: profile edges then transversal edges.
-  const std::vector<Segment>& edges() const { return edges_; }
+  std::vector<Segment> edges() const;
+  std::size_t edge_count() const { return rows_ * face_columns() + (rows_ - 1) * columns_; }
   /// One diagonal per face (corners 0 and 2): with the edges and planarity it
   /// fixes the panel's shape, so it is part of the isometry check.
-  const std::vector<Segment>& diagonals() const { return diagonals_; }
+  std::vector<Segment> diagonals() const;
 
  private:
   std::size_t rows_ = 0, columns_ = 0;
   bool cyclic_ = false;
-  std::vector<Quad> faces_;
-  std::vector<Segment> edges_;
-  std::vector<Segment> diagonals_;
 };
 
 }  // namespace phedra

@@ -26,7 +26,8 @@ class Linkage {
   Linkage() = default;
   /// Decides the case from the axial net: the first row where |S_0 - V| and
   /// |S_1 - V| differ (build_axial_net has excluded the scissor case with '-').
-  Linkage(const AxialNet& axial, const CanonicalInput& input);
+  /// `column`: A_{i,0}, column 0 of the axial net.
+  Linkage(const Points& column, const CanonicalInput& input);
 
   MotionCase motion_case() const { return case_; }
   /// The bound |t| <= r of the moving bar: V_{0,0} reaches the axis there.

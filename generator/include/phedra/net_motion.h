@@ -7,6 +7,7 @@
 #include "phedra/axial_net.h"
 #include "phedra/parallel_net.h"
 
+#include <functional>
 #include <vector>
 
 namespace phedra {
@@ -16,6 +17,13 @@ class NetMotion {
   NetMotion() = default;
   /// Constants from the axial and parallel nets at t*.
   NetMotion(const AxialNet& axial, const ParallelNet& parallel, const std::vector<Sign>& signs);
+
+  /// Sees row i of the axial and of the general net at t* (n entries each, canonical frame).
+  using RowSink = std::function<void(std::size_t i, const Vec3* axial, const Vec3* general)>;
+  /// Builds both nets row by row (build_axial_row, build_parallel_row) and keeps
+  /// only the constants: memory is O(n) besides them. `column` is step 1 of the
+  /// axial net, `trajectory` the general net's column 0.
+  NetMotion(const CanonicalInput& input, const AxialColumn& column, const Points& trajectory, const RowSink& sink);
 
   std::size_t rows() const { return rows_; }
   std::size_t columns() const { return columns_; }

@@ -23,6 +23,14 @@ struct ParallelNet {
 
 /// Solves the parallel net face by face from the input trajectory (canonical
 /// frame). Throws InvalidInputError for a degenerate axial face.
+/// Row i of the parallel net (n vertices) and its transversal scales, from row
+/// i - 1 of both nets and row i of the axial net; `trajectory` is V_{i,0}, the
+/// edge scale that of AxialNet. Rows 0 and 1 copy the axial rows. Throws
+/// InvalidInputError for a degenerate axial face.
+void build_parallel_row(std::size_t i, std::size_t n, const Vec3* previous_axial, const Vec3* axial,
+                        const Vec3* previous_general, const Vec3& trajectory, double edge_scale, Vec3* general,
+                        double* scales);
+
 ParallelNet build_parallel_net(const AxialNet& axial, const Points& trajectory);
 
 }  // namespace phedra

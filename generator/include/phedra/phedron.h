@@ -77,10 +77,12 @@ class PHedron {
   StripMargin margin(double t) const;
 
   const CanonicalFrame& frame() const { return frame_; }
-  /// The input in the canonical frame, the axial and the parallel net at t*.
+  /// The input in the canonical frame.
   const CanonicalInput& canonical_input() const { return canonical_; }
-  const AxialNet& axial_net() const { return axial_; }
-  const ParallelNet& parallel_net() const { return parallel_; }
+  /// The axial and the parallel net at t* (canonical frame), rebuilt on each call:
+  /// a P-hedron keeps only reference() and the constants of its motion.
+  AxialNet axial_net() const { return build_axial_net(canonical_); }
+  ParallelNet parallel_net() const { return build_parallel_net(axial_net(), canonical_.trajectory); }
   const NetMotion& motion() const { return motion_; }
 
  private:
@@ -93,8 +95,6 @@ class PHedron {
   ControlPolylines input_;
   CanonicalFrame frame_;
   CanonicalInput canonical_;
-  AxialNet axial_;
-  ParallelNet parallel_;
   NetMotion motion_;
   Linkage linkage_;
   StripChain chain_;

@@ -24,7 +24,8 @@ class StripChain {
   /// Constant distances and branches from the axial net at t*. Throws
   /// InvalidInputError when the input is a bifurcation configuration (a strip
   /// with pi_{i-1} = pi_i).
-  StripChain(const AxialNet& axial, double s0, double s1);
+  /// `column`: A_{i,0}, column 0 of the axial net.
+  StripChain(const Points& column, double s0, double s1);
 
   std::size_t strips() const { return r0_squared_.size(); }
 
