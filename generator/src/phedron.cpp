@@ -106,7 +106,8 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   }
   const double bound = linkage_.bound();
   interval_ = find_flexion_interval(t_star_, frame_.height_to_user(-bound), frame_.height_to_user(bound),
-                                    [this](double t) { return margin(t); });
+                                    [this](double t) { return margin(t); },
+                                    [this](double t, std::size_t strip) { return strip_margin(t, strip); });
   if (!(interval_.lower.t < t_star_)) throw bifurcation({0, interval_.lower.strip}, "t* is the lower flexion limit");
   if (!(interval_.upper.t > t_star_)) throw bifurcation({0, interval_.upper.strip}, "t* is the upper flexion limit");
 }
@@ -122,13 +123,20 @@ double PHedron::t_at_fraction(double fraction) const {
 StripMargin PHedron::canonical_margin(double tc) const {
   LinkageStart start;
   double margin;
-  if (!linkage_.start(tc, start, margin)) return {-1.0, 0};
-  StripMargin worst = chain_.trace(start.s0, start.s1, Vec3(start.x, 0, 0));
-  if (worst.value >= 0.0 && margin < worst.value) worst = {margin, 0};
+  if (!linkage_.start(tc, start, margin)) return {margin, 0};
+  StripMargin worst = chain_.margin(start.s0, start.s1, start.x);
+  if (margin < worst.value) worst = {margin, 0};
   return worst;
 }
 
 StripMargin PHedron::margin(double t) const { return canonical_margin(canonical_t(t)); }
+
+double PHedron::strip_margin(double t, std::size_t strip) const {
+  LinkageStart start;
+  double margin;
+  if (!linkage_.start(canonical_t(t), start, margin) || strip == 0) return margin;
+  return chain_.strip_margin(strip, start.s0, start.s1, start.x);
+}
 
 template <class RowSink>
 void PHedron::run_rows(double t, RowSink&& sink) const {

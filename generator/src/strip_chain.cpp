@@ -3,7 +3,9 @@
 #include "phedra/errors.h"
 #include "phedra/tolerances.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace phedra {
@@ -14,6 +16,7 @@ StripChain::StripChain(const Points& column, double s0, double s1) {
   r1_squared_.resize(m);
   rp_squared_.resize(m);
   branch_.resize(m);
+  half_difference_.resize(m);
   const Vec3 apex0(0, 0, s0), apex1(0, 0, s1);
   for (std::size_t i = 1; i <= m; ++i) {
     const Vec3& x = column[i];
@@ -29,6 +32,7 @@ StripChain::StripChain(const Points& column, double s0, double s1) {
                                   " coincide: the input is in a bifurcation configuration (a flexion limit)");
     }
     branch_[i - 1] = turn > 0.0 ? 1.0 : -1.0;
+    half_difference_[i - 1] = 0.5 * (r1_squared_[i - 1] - r0_squared_[i - 1]);
   }
 }
 
@@ -57,17 +61,38 @@ bool StripChain::advance(std::size_t i, double s0, double s1, const Vec3& p, Vec
   return radius2 > 0.0 && rho2 > 0.0;
 }
 
-StripMargin StripChain::trace(double s0, double s1, const Vec3& first) const {
+double StripChain::strip_value(std::size_t k, double h, double r2, double previous_h, double previous_r2) const {
+  // c = (r2 + r2_prev + dz^2 - rp^2) / (2 r r_prev) as in advance(), and
+  // 1 - c^2 = (4 r2 r2_prev - num^2) / (4 r2 r2_prev) without a square root.
+  if (!(r2 > 0.0 && previous_r2 > 0.0)) return std::min(r2 / r0_squared_[k], -std::numeric_limits<double>::min());
+  const double dz = h - previous_h;
+  const double numerator = r2 + previous_r2 + dz * dz - rp_squared_[k];
+  const double denominator = 4.0 * r2 * previous_r2;
+  return (denominator - numerator * numerator) / denominator;
+}
+
+StripMargin StripChain::margin(double s0, double s1, double x) const {
   StripMargin worst;
-  Vec3 previous = first;
-  Vec3 next;
-  for (std::size_t i = 1; i <= strips(); ++i) {
-    double margin;
-    if (!advance(i, s0, s1, previous, next, margin)) return {-1.0, i};
-    if (margin < worst.value) worst = {margin, i};
-    previous = next;
+  const double middle = 0.5 * (s0 + s1), inverse = 1.0 / (s0 - s1);
+  double previous_h = 0.0, previous_r2 = x * x;
+  const std::size_t m = strips();
+  for (std::size_t k = 0; k < m; ++k) {
+    double h, r2;
+    circle(k, s0, middle, inverse, h, r2);
+    const double value = strip_value(k, h, r2, previous_h, previous_r2);
+    if (!(value >= worst.value)) worst = {value, k + 1};
+    previous_h = h;
+    previous_r2 = r2;
   }
   return worst;
+}
+
+double StripChain::strip_margin(std::size_t i, double s0, double s1, double x) const {
+  const double middle = 0.5 * (s0 + s1), inverse = 1.0 / (s0 - s1);
+  double previous_h = 0.0, previous_r2 = x * x, h, r2;
+  if (i >= 2) circle(i - 2, s0, middle, inverse, previous_h, previous_r2);
+  circle(i - 1, s0, middle, inverse, h, r2);
+  return strip_value(i - 1, h, r2, previous_h, previous_r2);
 }
 
 }  // namespace phedra

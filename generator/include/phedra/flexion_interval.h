@@ -24,13 +24,18 @@ struct FlexionInterval {
   bool contains(double t) const { return t >= lower.t && t <= upper.t; }
 };
 
-/// Margin of the motion at t (value < 0 where it is not real there).
+/// Margin of the motion at t (value < 0 where it is not real there): the smallest
+/// over the strips, and which strip.
 using MarginFunction = std::function<StripMargin(double)>;
+/// Margin of one strip at t (cheap: the strips are independent).
+using StripMarginFunction = std::function<double(double t, std::size_t strip)>;
 
 /// Searches both ends between t* and the hard bounds [lower_bound, upper_bound]
 /// (beyond which the margin is certainly negative). Requires margin(t*) > 0.
-/// Each end is the last t where the margin is still >= 0, to machine precision.
+/// Each end is the last t where the margin is still >= 0, to machine precision:
+/// once a step fails, the failing strip's own margin is bisected (O(1) a step)
+/// and the whole margin is checked at its root, until no other strip fails first.
 FlexionInterval find_flexion_interval(double t_star, double lower_bound, double upper_bound,
-                                      const MarginFunction& margin);
+                                      const MarginFunction& margin, const StripMarginFunction& strip_margin);
 
 }  // namespace phedra

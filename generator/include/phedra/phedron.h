@@ -75,6 +75,8 @@ class PHedron {
   /// The margin of the motion at t (negative where it is not real), and the strip
   /// that has the smallest one.
   StripMargin margin(double t) const;
+  /// The margin of one strip at t (0: the linkage L_0), in O(1).
+  double strip_margin(double t, std::size_t strip) const;
 
   const CanonicalFrame& frame() const { return frame_; }
   /// The input in the canonical frame.

@@ -36,13 +36,28 @@ class StripChain {
   bool advance(std::size_t i, double s0, double s1, const Vec3& previous, Vec3& out, double& margin,
                bool clamp = false) const;
 
-  /// Follows the trajectory from V_{0,0}(t) = first; returns the smallest margin,
-  /// or the first strip that fails (value < 0).
-  StripMargin trace(double s0, double s1, const Vec3& first) const;
+  /// The smallest margin over the strips at apexes s0, s1 with V_{0,0}(t) =
+  /// (x, 0, 0), and its strip. Each strip's margin depends only on the heights and
+  /// radii of its two circles (V_{i,0} has the height h_i and the distance r_i
+  /// from the axis whatever its angle), so no vertex is computed and the strips
+  /// are independent. Negative (continuous in t) where the motion is not real: a
+  /// strip with 1 - c^2 < 0, or with no circle at all (r_i^2 <= 0).
+  StripMargin margin(double s0, double s1, double x) const;
+  /// The margin of strip i >= 1 alone, in O(1): the same arithmetic as margin().
+  double strip_margin(std::size_t i, double s0, double s1, double x) const;
 
  private:
   // index i - 1 for strip i
   std::vector<double> r0_squared_, r1_squared_, rp_squared_, branch_;
+  std::vector<double> half_difference_;  ///< (r1^2 - r0^2) / 2
+
+  /// Height and squared radius of the circle of V_{k+1,0} (index k = i - 1).
+  void circle(std::size_t k, double s0, double middle, double inverse, double& h, double& r2) const {
+    h = middle + half_difference_[k] * inverse;
+    r2 = r0_squared_[k] - (h - s0) * (h - s0);
+  }
+  /// 1 - c^2 of strip k + 1 from its circle and the previous one's.
+  double strip_value(std::size_t k, double h, double r2, double previous_h, double previous_r2) const;
 };
 
 }  // namespace phedra
