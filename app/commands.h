@@ -21,5 +21,6 @@ void add_sample_command(CLI::App& app, Context& context);
 void add_check_command(CLI::App& app, Context& context);
 void add_generate_command(CLI::App& app, Context& context);
 void add_view_command(CLI::App& app, Context& context);
+void add_bench_command(CLI::App& app, Context& context);
 
 }  // namespace phedra::cli

@@ -77,6 +77,25 @@ void check_properties(const PHedron& p) {
   CHECK(report.isometry.value <= eps);
   CHECK(report.reproduction <= eps);
 
+  // Each strip's margin (computed from its two circles alone, no chain) is
+  // sin^2 of the angle between its profile planes, and the smallest of them is
+  // margin(t).
+  for (double fraction : {0.0, 0.2, 0.5, 0.9, 1.0}) {
+    const double t = p.t_at_fraction(fraction);
+    const Points v = p.evaluate(t);
+    StripMargin smallest;
+    for (std::size_t i = 1; i < p.topology().rows(); ++i) {
+      const double sine = profile_normal(p, v, i - 1).cross(profile_normal(p, v, i)).norm();
+      const double value = p.strip_margin(t, i);
+      CAPTURE(fraction, i, value, sine * sine);
+      CHECK(std::abs(value - sine * sine) <= 1e-7);
+      if (value < smallest.value) smallest = {value, i};
+    }
+    const StripMargin whole = p.margin(t);
+    if (p.strip_margin(t, 0) < smallest.value) smallest = {p.strip_margin(t, 0), 0};
+    CHECK(whole.value == smallest.value);
+  }
+
   // Each end is the last double at which the motion is real, and there the
   // profile planes of the causing strip coincide (parallel in the general net):
   // the sine of their angle is sqrt(margin), 0 up to the rounding of t.

@@ -93,7 +93,7 @@ void Assembly::evaluate_states(double t, std::vector<NetState>& states) const {
 }
 
 void Assembly::evaluate(double t, AssemblyConfiguration& out) const {
-  std::vector<NetState> states;
+  std::vector<NetState>& states = out.states;
   evaluate_states(t, states);
   out.t = t;
   out.members.resize(members_.size());

@@ -77,9 +77,10 @@ std::string face_name(const Assembly& a, const AssemblyMesh& mesh, std::size_t f
 /// Keyframes for morph targets: vertex positions interpolate linearly, so the
 /// intervals are split until the chord error at 1/4, 1/2, 3/4 is within tolerance.
 std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
-                                          double tolerance, std::size_t maximum, double& worst, double& worst_t) {
+                                          double tolerance, std::size_t initial, std::size_t maximum, double& worst,
+                                          double& worst_t) {
   std::map<double, Points> frames;
-  for (double t : interval_samples(lo, hi, std::min<std::size_t>(9, maximum))) frames[t] = positions(t);
+  for (double t : interval_samples(lo, hi, std::min(initial, maximum))) frames[t] = positions(t);
   bool refined = true;
   while (refined) {
     refined = false;
@@ -121,7 +122,8 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   const double lo = assembly.flexion_interval().lower.t, width = assembly.flexion_interval().width();
   const std::map<double, Points> frames =
       morph_keyframes(positions, lo, assembly.flexion_interval().upper.t,
-                      options.keyframes.relative_tolerance * assembly.model_size(), options.max_morph_targets,
+                      options.keyframes.relative_tolerance * assembly.model_size(), options.keyframes.initial,
+                      std::min(options.max_morph_targets, options.keyframes.maximum),
                       report.max_opening, report.opening_t);
   const Points base = positions(assembly.t_star());
   auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {

@@ -1,5 +1,6 @@
 #include "phedra/geometry_checks.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phedra {
@@ -8,19 +9,19 @@ Deviation planarity(const std::vector<Quad>& faces, std::span<const Vec3> v) {
   Deviation worst;
   for (std::size_t f = 0; f < faces.size(); ++f) {
     const Quad& q = faces[f];
-    // The triangle without corner k, and the distance of corner k from its plane.
-    double best_area = -1.0, distance = 0.0;
-    for (int k = 0; k < 4; ++k) {
-      const Vec3& a = v[q[(k + 1) % 4]];
-      const Vec3& b = v[q[(k + 2) % 4]];
-      const Vec3& c = v[q[(k + 3) % 4]];
-      const Vec3 normal = (b - a).cross(c - a);
-      const double area = normal.norm();
-      if (area > best_area) {
-        best_area = area;
-        distance = area > 0.0 ? std::abs(normal.dot(v[q[k]] - a)) / area : 0.0;
-      }
-    }
+    const Vec3 &p0 = v[q[0]], &p1 = v[q[1]], &p2 = v[q[2]], &p3 = v[q[3]];
+    // The distance of corner k from the plane of the other three is |det| / |n_k|
+    // (det: six times the signed volume of the tetrahedron, the same for every k;
+    // n_k: the normal of the triangle without k). The best-conditioned triangle is
+    // the largest, so one square root and one division a face.
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0, e3 = p3 - p0;
+    const Vec3 n3 = e1.cross(e2);  // triangle 0 1 2 (without 3)
+    const Vec3 n1 = e2.cross(e3);  // 0 2 3
+    const Vec3 n2 = e1.cross(e3);  // 0 1 3
+    const Vec3 n0 = (p2 - p1).cross(p3 - p1);  // 1 2 3
+    const double det = n3.dot(e3);
+    const double area2 = std::max(std::max(n0.squaredNorm(), n1.squaredNorm()), std::max(n2.squaredNorm(), n3.squaredNorm()));
+    const double distance = area2 > 0.0 ? std::abs(det) / std::sqrt(area2) : 0.0;
     if (!(distance <= worst.value)) worst = {distance, f};
   }
   return worst;

@@ -85,8 +85,8 @@ nlohmann::json IntervalCheckReport::to_json() const {
                    {"flexion_interval", {t_lambda, t_mu}},
                    {"t_star", t_star},
                    {"samples", samples},
-                   {"planarity", worst_case_json(planarity, model_size)},
-                   {"isometry", worst_case_json(isometry, model_size)},
+                   {"planarity", shape_checked ? worst_case_json(planarity, model_size) : nlohmann::json()},
+                   {"isometry", shape_checked ? worst_case_json(isometry, model_size) : nlohmann::json()},
                    {"reproduction", reproduction}};
   if (closed) j["closure"] = worst_case_json(closure, model_size);
   return j;

@@ -104,12 +104,16 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
     throw bifurcation(at_star, "strip " + std::to_string(at_star.strip) + " is at its flexion limit (margin " +
                                    format_number(at_star.value) + ")");
   }
-  const double bound = linkage_.bound();
-  interval_ = find_flexion_interval(t_star_, frame_.height_to_user(-bound), frame_.height_to_user(bound),
-                                    [this](double t) { return margin(t); },
-                                    [this](double t, std::size_t strip) { return strip_margin(t, strip); });
+  interval_ = search_flexion_interval();
   if (!(interval_.lower.t < t_star_)) throw bifurcation({0, interval_.lower.strip}, "t* is the lower flexion limit");
   if (!(interval_.upper.t > t_star_)) throw bifurcation({0, interval_.upper.strip}, "t* is the upper flexion limit");
+}
+
+FlexionInterval PHedron::search_flexion_interval() const {
+  const double bound = linkage_.bound();
+  return find_flexion_interval(t_star_, frame_.height_to_user(-bound), frame_.height_to_user(bound),
+                               [this](double t) { return margin(t); },
+                               [this](double t, std::size_t strip) { return strip_margin(t, strip); });
 }
 
 double PHedron::t_at_fraction(double fraction) const {

@@ -27,6 +27,8 @@ struct AssemblyConfiguration {
   double t = 0.0;
   std::vector<Points> members;
   std::vector<ClosureGap> closure;
+  /// Scratch of evaluate (the members' canonical nets), kept between calls.
+  std::vector<NetState> states;
 };
 
 class Assembly {

@@ -22,7 +22,8 @@ struct GltfOptions {
   std::optional<double> static_t;     ///< a static export at this t (no animation)
   /// Morph targets instead of nodes: one mesh, one target per keyframe, sparse
   /// one-hot weights; keyframes bound the chord error of the vertices (at most
-  /// `max_morph_targets`).
+  /// `max_morph_targets`); they start from `keyframes.initial` and never exceed
+  /// `keyframes.maximum` either.
   bool morph = false;
   std::size_t max_morph_targets = 250;
   KeyframeOptions keyframes;

@@ -48,6 +48,9 @@ class PHedron {
   double t_star() const { return t_star_; }
   /// [t_lambda, t_mu] (user t) with the strip that causes each end.
   const FlexionInterval& flexion_interval() const { return interval_; }
+  /// Searches the flexion interval again (what the constructor stores in
+  /// flexion_interval()); for benchmarks.
+  FlexionInterval search_flexion_interval() const;
   /// t_lambda + fraction * (t_mu - t_lambda); fraction in [0, 1] (InvalidInputError otherwise).
   double t_at_fraction(double fraction) const;
 

@@ -1,0 +1,84 @@
+// Google Benchmark versions of the figures of `phedra bench` (docs/performance.md),
+// for profiling and for comparing builds:
+//   build/bin/phedra_google_bench [--benchmark_filter=evaluate]
+// evaluate(t) against writing the same vertex buffer at 10^3..10^7 vertices,
+// the flexion interval of 10^4 profiles, the check of a 10 x 10 array and the
+// glTF export of 10^4 panels.
+
+#include "phedra/assembly_check.h"
+#include "phedra/bench_cases.h"
+#include "phedra/gltf_export.h"
+#include "phedra/phedron.h"
+
+#include <benchmark/benchmark.h>
+
+namespace {
+
+using namespace phedra;
+
+void per_vertex(benchmark::State& state, std::size_t vertices) {
+  state.counters["ns_per_vertex"] = benchmark::Counter(static_cast<double>(vertices),
+                                                       benchmark::Counter::kIsIterationInvariantRate |
+                                                           benchmark::Counter::kInvert);
+  state.SetBytesProcessed(static_cast<int64_t>(state.iterations()) * static_cast<int64_t>(vertices * 24));
+}
+
+void evaluate(benchmark::State& state) {
+  const PHedron p(bench::open_input_with_vertices(static_cast<std::size_t>(state.range(0))));
+  Points out(p.vertex_count());
+  const double t = p.t_at_fraction(0.3);
+  for (auto _ : state) {
+    p.evaluate(t, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  per_vertex(state, p.vertex_count());
+}
+
+void write_buffer(benchmark::State& state) {
+  Points out(static_cast<std::size_t>(state.range(0)));
+  double x = 0;
+  for (auto _ : state) {
+    x += 1.0;
+    for (Vec3& v : out) v = Vec3(x, x, x);
+    benchmark::DoNotOptimize(out.data());
+  }
+  per_vertex(state, out.size());
+}
+
+void flexion_interval(benchmark::State& state) {
+  const PHedron p(bench::general_open_input(static_cast<std::size_t>(state.range(0)), 4));
+  for (auto _ : state) benchmark::DoNotOptimize(p.search_flexion_interval());
+}
+
+void construction(benchmark::State& state) {
+  const ControlPolylines in = bench::general_open_input(static_cast<std::size_t>(state.range(0)), 4);
+  for (auto _ : state) {
+    const PHedron p(in);
+    benchmark::DoNotOptimize(p.flexion_interval().upper.t);
+  }
+}
+
+void array_check(benchmark::State& state) {
+  const Design design = bench::parallelogram_array(10, 100);
+  CheckOptions options;
+  options.samples = 1000;
+  for (auto _ : state) benchmark::DoNotOptimize(check_assembly(design.assembly, options).passed());
+}
+
+void gltf_export(benchmark::State& state) {
+  const Design design = bench::open_design_with_panels(10000);
+  GltfOptions options;
+  options.keyframes.relative_tolerance = 1e9;
+  options.keyframes.initial = options.keyframes.maximum = 200;
+  for (auto _ : state) benchmark::DoNotOptimize(gltf_bytes(design, options).size());
+}
+
+}  // namespace
+
+BENCHMARK(evaluate)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(write_buffer)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
+BENCHMARK(flexion_interval)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(construction)->Arg(10000)->Unit(benchmark::kMillisecond);
+BENCHMARK(array_check)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK_MAIN();

@@ -1,0 +1,30 @@
+#pragma once
+// The inputs of the benchmarks (issue 5, docs/performance.md): generated, well
+// conditioned designs of a chosen size, shared by `phedra bench` and the Google
+// Benchmark binary.
+
+#include "phedra/control_polylines.h"
+#include "phedra/design.h"
+
+#include <cstddef>
+
+namespace phedra::bench {
+
+/// A general open P-hedron (profile planes off the axis, all '+' signs) with
+/// `profiles` profiles of n + 1 apexes: profiles x (n + 2) vertices. A helical
+/// trajectory whose profile planes are turned by a small oscillating angle.
+ControlPolylines general_open_input(std::size_t profiles, std::size_t n);
+
+/// The open P-hedron of general_open_input with about `vertices` vertices: 1000
+/// a profile from 10^6 vertices on, 100 from 10^4 on, 10 below.
+ControlPolylines open_input_with_vertices(std::size_t vertices);
+
+/// A 10 x 10 (cells x cells) parallelogram array on a helical trajectory of
+/// `segments` segments: every cell face-coupled to its neighbours and
+/// edge-sharing with its diagonal ones.
+Design parallelogram_array(std::size_t cells, std::size_t segments);
+
+/// An open P-hedron design with about `panels` panels (faces).
+Design open_design_with_panels(std::size_t panels);
+
+}  // namespace phedra::bench

@@ -1,0 +1,380 @@
+#include "phedra/bench_figures.h"
+
+#include "phedra/assembly_check.h"
+#include "phedra/bench_cases.h"
+#include "phedra/gltf_export.h"
+#include "phedra/interval_check.h"
+#include "phedra/number_format.h"
+#include "phedra/phedron.h"
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+namespace phedra::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// The fastest of repeated runs of `work` (seconds): at least `min_runs`, and
+/// until `min_total` seconds have been spent (at most `max_runs`).
+template <class Work>
+double best_seconds(Work&& work, double min_total = 0.3, int min_runs = 3, int max_runs = 100000) {
+  double best = INFINITY, total = 0.0;
+  for (int run = 0; run < max_runs && (run < min_runs || total < min_total); ++run) {
+    const auto start = Clock::now();
+    work();
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    best = std::min(best, seconds);
+    total += seconds;
+  }
+  return best;
+}
+
+/// Keeps the optimiser from dropping a result.
+void keep(const void* p) { asm volatile("" : : "g"(p) : "memory"); }
+
+int exponent(std::size_t n) {
+  int e = 0;
+  for (std::size_t k = n; k >= 10 && k % 10 == 0; k /= 10) ++e;
+  return e;
+}
+/// "1e6": for figure ids.
+std::string power_of_ten(std::size_t n) { return "1e" + std::to_string(exponent(n)); }
+/// "10^6": for descriptions.
+std::string ten_to(std::size_t n) { return "10^" + std::to_string(exponent(n)); }
+
+std::string machine_name() {
+  std::ifstream cpu("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpu, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads (benchmarks use one)";
+}
+
+/// /proc/self/status field in KiB (-1 when absent).
+long status_kib(const char* field) {
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  const std::size_t length = std::strlen(field);
+  while (std::getline(status, line)) {
+    if (line.compare(0, length, field) == 0 && line.size() > length && line[length] == ':') {
+      return std::stol(line.substr(length + 1));
+    }
+  }
+  return -1;
+}
+
+/// Peak resident memory (bytes) added while `work` runs, measured in a child
+/// process (Linux: /proc/self/clear_refs resets the peak). Negative when it
+/// cannot be measured.
+template <class Work>
+double peak_bytes_in_child(Work&& work) {
+  int pipe_ends[2];
+  if (pipe(pipe_ends) != 0) return -1.0;
+  const pid_t child = fork();
+  if (child < 0) return -1.0;
+  if (child == 0) {
+    close(pipe_ends[0]);
+    double result = -1.0;
+    {
+      std::ofstream reset("/proc/self/clear_refs");
+      reset << "5";
+    }
+    const long before = status_kib("VmRSS");
+    const long reset_peak = status_kib("VmHWM");
+    if (before > 0 && reset_peak <= before + 1024) {  // the reset worked (within 1 MiB)
+      work();
+      result = 1024.0 * static_cast<double>(status_kib("VmHWM") - before);
+    }
+    [[maybe_unused]] const auto written = write(pipe_ends[1], &result, sizeof result);
+    _exit(0);
+  }
+  close(pipe_ends[1]);
+  double result = -1.0;
+  if (read(pipe_ends[0], &result, sizeof result) != sizeof result) result = -1.0;
+  close(pipe_ends[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return result;
+}
+
+/// Bytes of a GLB file and the sum of its accessors' data (count x element size).
+struct GlbSizes {
+  double file = 0.0, payload = 0.0;
+};
+
+GlbSizes glb_sizes(const std::string& glb) {
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, glb.data() + at, 4);
+    return v;
+  };
+  const nlohmann::json json = nlohmann::json::parse(glb.substr(20, u32(12)));
+  GlbSizes sizes{static_cast<double>(glb.size()), 0.0};
+  for (const auto& a : json["accessors"]) {
+    const int component = a["componentType"] == 5126 || a["componentType"] == 5125 ? 4 : 2;
+    const std::string type = a["type"];
+    const int components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : 16;
+    sizes.payload += static_cast<double>(a["count"].get<std::size_t>() * component * components);
+  }
+  return sizes;
+}
+
+class Runner {
+ public:
+  Runner(const BenchOptions& options, const std::function<void(const std::string&)>& progress)
+      : options_(options), progress_(progress) {}
+
+  BenchReport run() {
+    report_.quick = options_.quick;
+    report_.machine = machine_name();
+    evaluate_figures();
+    memory_figure();
+    accuracy_figures();
+    interval_figures();
+    closure_figure();
+    gltf_figures();
+    return report_;
+  }
+
+ private:
+  void announce(const std::string& what) {
+    if (progress_) progress_(what);
+  }
+  void add(std::string id, std::string description, double value, std::string unit,
+           std::optional<double> target = std::nullopt) {
+    report_.figures.push_back({std::move(id), std::move(description), value, std::move(unit), target});
+  }
+
+  void evaluate_figures() {
+    std::vector<std::size_t> sizes;
+    const std::size_t largest = options_.quick ? 100000 : options_.max_vertices;
+    for (std::size_t n = 1000; n <= largest; n *= 10) sizes.push_back(n);
+    std::vector<double> evaluate_ns, write_ns;
+    for (std::size_t n : sizes) {
+      announce("evaluate(t), " + std::to_string(n) + " vertices");
+      const PHedron p(open_input_with_vertices(n));
+      Points out(p.vertex_count());
+      const double t = p.t_at_fraction(0.3);
+      const double vertices = static_cast<double>(p.vertex_count());
+      const double evaluate_s = best_seconds([&] {
+        p.evaluate(t, out);
+        keep(out.data());
+      });
+      double x = 0.0;
+      const double write_s = best_seconds([&] {
+        x += 1.0;
+        for (Vec3& v : out) v = Vec3(x, x, x);
+        keep(out.data());
+      });
+      evaluate_ns.push_back(1e9 * evaluate_s / vertices);
+      write_ns.push_back(1e9 * write_s / vertices);
+      const std::string e = power_of_ten(n);
+      add("evaluate.ns_per_vertex_" + e,
+          "evaluate(t) of a general open P-hedron, " + std::to_string(p.vertex_count()) + " vertices (" +
+              std::to_string(p.topology().rows()) + " profiles)",
+          evaluate_ns.back(), "ns/vertex");
+      add("write.ns_per_vertex_" + e, "writing the same 24-byte-a-vertex buffer (memory-bandwidth reference)",
+          write_ns.back(), "ns/vertex");
+      add("write.bandwidth_" + e, "write bandwidth of that buffer", 24.0 / write_ns.back(), "GB/s");
+      if (n == 1000000) {
+        add("evaluate.ratio_to_write_1e6", "evaluate(t) / buffer write, 10^6 vertices", evaluate_s / write_s, "x", 3.0);
+      }
+    }
+    if (sizes.size() >= 2) {
+      // Linear growth: ns per vertex stays within a factor over 10^4.. (10^3 is call overhead).
+      const auto first = evaluate_ns.begin() + 1;
+      const double spread = *std::max_element(first, evaluate_ns.end()) / *std::min_element(first, evaluate_ns.end());
+      add("evaluate.linearity", "largest / smallest ns per vertex of evaluate(t), 10^4 to " +
+                                    ten_to(sizes.back()) + " vertices (1: exactly linear)",
+          spread, "x", 2.0);
+    }
+  }
+
+  void memory_figure() {
+    const std::size_t n = options_.quick ? 100000 : 1000000;
+    announce("peak memory, " + std::to_string(n) + " vertices");
+    const ControlPolylines input = open_input_with_vertices(n);
+    std::size_t vertices = 0;
+    {
+      const PHedron p(input);
+      vertices = p.vertex_count();
+    }
+    const double peak = peak_bytes_in_child([&] {
+      const PHedron p(input);
+      Points out(p.vertex_count());
+      p.evaluate(p.t_at_fraction(0.3), out);
+      keep(out.data());
+    });
+    if (peak < 0.0) return;  // not measurable here (no /proc/self/clear_refs)
+    add("memory.peak_ratio_" + power_of_ten(n),
+        "peak resident memory of constructing the P-hedron and evaluating it once, over its vertex buffer (" +
+            std::to_string(vertices) + " x 24 bytes)",
+        peak / (24.0 * static_cast<double>(vertices)), "x", 3.0);
+  }
+
+  void accuracy(const std::string& id, const std::string& what, const ControlPolylines& input) {
+    announce("accuracy, " + what);
+    const PHedron p(input);
+    CheckOptions check;
+    check.samples = 5;
+    const IntervalCheckReport r = check_over_interval(p, check);
+    add("accuracy.planarity_" + id, "planarity error over 5 samples of the interval / model size, " + what,
+        r.planarity.value / r.model_size, "relative", 1e-9);
+    add("accuracy.isometry_" + id, "isometry error over 5 samples of the interval / model size, " + what,
+        r.isometry.value / r.model_size, "relative", 1e-9);
+  }
+
+  void accuracy_figures() {
+    const std::size_t n = options_.quick ? 100000 : 1000000;
+    accuracy(power_of_ten(n), std::to_string(n) + " vertices", open_input_with_vertices(n));
+    const std::size_t k = options_.quick ? 1000 : 10000;
+    accuracy("profiles_" + power_of_ten(k), std::to_string(k) + " profiles (m = " + std::to_string(k - 1) + "), n = 4",
+             general_open_input(k, 4));
+    accuracy("n_" + power_of_ten(k), "n = " + std::to_string(k) + " vertices a profile, 100 profiles",
+             general_open_input(100, k));
+  }
+
+  void interval_figures() {
+    const std::size_t profiles = options_.quick ? 1000 : 10000;
+    announce("flexion interval, " + std::to_string(profiles) + " profiles");
+    const ControlPolylines input = general_open_input(profiles, 4);
+    const double construct_s = best_seconds([&] {
+      const PHedron p(input);
+      keep(&p);
+    });
+    const PHedron p(input);
+    const double search_s = best_seconds([&] {
+      const FlexionInterval interval = p.search_flexion_interval();
+      keep(&interval);
+    });
+    const std::string e = power_of_ten(profiles);
+    add("interval.ms_" + e, "flexion interval search of a P-hedron with " + std::to_string(profiles) + " profiles",
+        1e3 * search_s, "ms", 10.0);
+    add("construction.ms_" + e, "whole construction of that P-hedron (nets, motion constants, interval)",
+        1e3 * construct_s, "ms");
+  }
+
+  void closure_figure() {
+    const std::size_t cells = options_.quick ? 3 : 10, segments = options_.quick ? 10 : 100;
+    const std::size_t samples = options_.quick ? 100 : 1000;
+    announce("closure check, " + std::to_string(cells) + " x " + std::to_string(cells) + " array");
+    const Design design = parallelogram_array(cells, segments);
+    const std::string what = std::to_string(cells) + " x " + std::to_string(cells) + " parallelogram array, " +
+                             std::to_string(segments) + " trajectory segments, " + std::to_string(samples) + " samples";
+    for (const bool shape : {false, true}) {
+      CheckOptions check;
+      check.samples = samples;
+      check.shape = shape;
+      AssemblyCheckReport report;
+      const double seconds = best_seconds([&] { report = check_assembly(design.assembly, check); }, 0.0, 1, 1);
+      if (!shape) {
+        add("closure_check.s", "closure check (phedra check --closure-only: closure gaps, shared vertices) of a " + what,
+            seconds, "s", 1.0);
+        add("closure_check.worst_gap", "its worst closure gap / model size (the check " +
+                                           std::string(report.passed() ? "passed" : "FAILED") + ")",
+            report.closure.value / report.model_size, "relative", 1e-9);
+      } else {
+        add("full_check.s", "full check (phedra check: also planarity and isometry of every panel) of the same array",
+            seconds, "s");
+      }
+    }
+  }
+
+  void gltf_figures() {
+    const std::size_t panels = options_.quick ? 1000 : 10000, keyframes = options_.quick ? 50 : 200;
+    announce("glTF export, " + std::to_string(panels) + " panels");
+    const Design design = open_design_with_panels(panels);
+    GltfOptions options;
+    options.keyframes.relative_tolerance = 1e9;  // exactly `initial` keyframes
+    options.keyframes.initial = keyframes;
+    options.keyframes.maximum = keyframes;
+    for (const bool morph : {false, true}) {
+      options.morph = morph;
+      std::string glb;
+      GltfReport report;
+      const double seconds = best_seconds([&] { glb = gltf_bytes(design, options, &report); }, 0.0, 1, 1);
+      const GlbSizes sizes = glb_sizes(glb);
+      const std::string what = std::to_string(report.panels) + " panels, " + std::to_string(report.keyframes) +
+                               (morph ? " morph targets" : " keyframes");
+      const std::string kind = morph ? "morph" : "nodes";
+      add("gltf." + kind + "_s",
+          std::string("animated glTF export (GLB, ") + (morph ? "--morph: one mesh, a target a keyframe" : "default: a node a panel") +
+              "), " + what,
+          seconds, "s", 2.0);
+      // The 1.1 target holds for the morph representation; a node a panel costs
+      // about 0.55 KB of JSON a panel (node, mesh, two accessors, channel,
+      // sampler), so its ratio approaches 1 only as keyframes grow.
+      add("gltf." + kind + "_size_ratio", "GLB file size / raw accessor data (geometry and animation), " + what,
+          sizes.file / sizes.payload, "x", morph ? std::optional<double>(1.1) : std::nullopt);
+      add("gltf." + kind + "_megabytes", "GLB file size, " + what, sizes.file / 1e6, "MB");
+    }
+  }
+
+  const BenchOptions& options_;
+  const std::function<void(const std::string&)>& progress_;
+  BenchReport report_;
+};
+
+}  // namespace
+
+bool BenchReport::all_met() const {
+  return std::all_of(figures.begin(), figures.end(), [](const Figure& f) { return f.met(); });
+}
+
+nlohmann::json BenchReport::to_json() const {
+  nlohmann::json j;
+  j["quick"] = quick;
+  j["machine"] = machine;
+  j["all_targets_met"] = all_met();
+  j["figures"] = nlohmann::json::array();
+  for (const Figure& f : figures) {
+    nlohmann::json e{{"id", f.id}, {"description", f.description}, {"value", f.value}, {"unit", f.unit}};
+    if (f.target) {
+      e["target"] = *f.target;
+      e["met"] = f.met();
+    }
+    j["figures"].push_back(e);
+  }
+  return j;
+}
+
+std::ostream& operator<<(std::ostream& out, const BenchReport& report) {
+  out << "phedra bench" << (report.quick ? " --quick (small cases: not comparable with the targets)" : "") << "\n"
+      << "machine: " << report.machine << "\n\n";
+  for (const Figure& f : report.figures) {
+    std::ostringstream value;
+    value << std::setprecision(4) << f.value << " " << f.unit;
+    out << std::left << std::setw(34) << f.id << std::setw(22) << value.str() << " ";
+    if (f.target) {
+      std::ostringstream target;
+      target << "<= " << std::setprecision(4) << *f.target;
+      out << std::setw(12) << target.str() << (f.met() ? "met    " : "MISSED ");
+    } else {
+      out << std::setw(19) << "";
+    }
+    out << f.description << "\n";
+  }
+  out << "\n" << (report.all_met() ? "every target met" : "some targets missed") << "\n";
+  return out;
+}
+
+BenchReport run_benchmarks(const BenchOptions& options, const std::function<void(const std::string&)>& progress) {
+  return Runner(options, progress).run();
+}
+
+}  // namespace phedra::bench
