@@ -62,6 +62,7 @@ void array_check(benchmark::State& state) {
   const Design design = bench::parallelogram_array(10, 100);
   CheckOptions options;
   options.samples = 1000;
+  options.shape = state.range(0) != 0;
   for (auto _ : state) benchmark::DoNotOptimize(check_assembly(design.assembly, options).passed());
 }
 
@@ -79,6 +80,6 @@ BENCHMARK(evaluate)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark:
 BENCHMARK(write_buffer)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(flexion_interval)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(construction)->Arg(10000)->Unit(benchmark::kMillisecond);
-BENCHMARK(array_check)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);  // 0: --closure-only
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK_MAIN();

@@ -6,7 +6,7 @@
 
 namespace phedra::bench {
 
-ControlPolylines general_open_input(std::size_t profiles, std::size_t n) {
+ControlPolylines general_open_input(std::size_t profiles, std::size_t n, bool mixed_signs) {
   ControlPolylines in;
   for (std::size_t i = 0; i < profiles; ++i) {
     const double k = static_cast<double>(i);
@@ -20,12 +20,15 @@ ControlPolylines general_open_input(std::size_t profiles, std::size_t n) {
     in.apex_heights.push_back(j % 2 ? 1.0 + 0.3 * std::sin(0.7 * k) : -1.0 + 0.3 * std::cos(0.5 * k));
   }
   in.signs.assign(n - 1, Sign::plus);
+  if (mixed_signs) {
+    for (std::size_t j = 2; j < in.signs.size(); j += 3) in.signs[j] = Sign::minus;
+  }
   return in;
 }
 
-ControlPolylines open_input_with_vertices(std::size_t vertices) {
+ControlPolylines open_input_with_vertices(std::size_t vertices, bool mixed_signs) {
   const std::size_t columns = vertices >= 1000000 ? 1000 : (vertices >= 10000 ? 100 : 10);
-  return general_open_input(std::max<std::size_t>(2, vertices / columns), columns - 2);
+  return general_open_input(std::max<std::size_t>(2, vertices / columns), columns - 2, mixed_signs);
 }
 
 Design parallelogram_array(std::size_t cells, std::size_t segments) {

@@ -111,7 +111,13 @@ std::vector<RigidPose> PanelTree::local_poses(std::span<const Vec3> positions) c
 }
 
 std::vector<RigidPose> PanelTree::world_poses(const std::vector<RigidPose>& local) const {
-  std::vector<RigidPose> world(panels());
+  std::vector<RigidPose> world;
+  world_poses(local, world);
+  return world;
+}
+
+void PanelTree::world_poses(const std::vector<RigidPose>& local, std::vector<RigidPose>& world) const {
+  world.resize(panels());
   for (std::size_t f : order_) {
     if (parent_[f] == SIZE_MAX) {
       world[f] = local[f];
@@ -121,7 +127,6 @@ std::vector<RigidPose> PanelTree::world_poses(const std::vector<RigidPose>& loca
       world[f].translation = p.apply(local[f].translation);
     }
   }
-  return world;
 }
 
 }  // namespace phedra

@@ -1,11 +1,14 @@
 #include "phedra/net_motion.h"
 
+#include <algorithm>
+
 namespace phedra {
 
 NetMotion::NetMotion(const AxialNet& axial, const ParallelNet& parallel, const std::vector<Sign>& signs)
     : rows_(axial.rows),
       columns_(axial.columns),
       ratios_(axial.ratios),
+      ratio_stride_(axial.columns - 1),
       scales_(parallel.transversal_scales) {
   mirror_.reserve(signs.size());
   for (Sign s : signs) mirror_.push_back(s == Sign::plus ? 1.0 : -1.0);
@@ -15,7 +18,9 @@ NetMotion::NetMotion(const CanonicalInput& in, const AxialColumn& column, const 
                      const RowSink& sink)
     : rows_(column.vertices.size()), columns_(in.heights.size() - 1) {
   const std::size_t n = columns_;
-  ratios_.assign(rows_ * (n - 1), 0.0);
+  const bool uniform = std::find(in.signs.begin(), in.signs.end(), Sign::minus) == in.signs.end();
+  ratio_stride_ = uniform ? 0 : n - 1;
+  ratios_.assign((uniform ? 1 : rows_) * (n - 1), 0.0);
   scales_.assign(rows_ * n, 1.0);
   for (Sign s : in.signs) mirror_.push_back(s == Sign::plus ? 1.0 : -1.0);
   Points previous_axial(n), axial(n), previous_general(n), general(n);
@@ -23,7 +28,7 @@ NetMotion::NetMotion(const CanonicalInput& in, const AxialColumn& column, const 
     std::swap(previous_axial, axial);
     std::swap(previous_general, general);
     axial[0] = column.vertices[i];
-    build_axial_row(in, i, axial.data(), &ratios_[i * (n - 1)]);
+    build_axial_row(in, i, axial.data(), &ratios_[i * ratio_stride_]);
     build_parallel_row(i, n, previous_axial.data(), axial.data(), previous_general.data(), trajectory[i],
                        column.edge_scale[i], general.data(), &scales_[i * n]);
     sink(i, axial.data(), general.data());

@@ -13,11 +13,13 @@ namespace phedra::bench {
 /// A general open P-hedron (profile planes off the axis, all '+' signs) with
 /// `profiles` profiles of n + 1 apexes: profiles x (n + 2) vertices. A helical
 /// trajectory whose profile planes are turned by a small oscillating angle.
-ControlPolylines general_open_input(std::size_t profiles, std::size_t n);
+/// With `mixed_signs`, every third sign is '-' (the sigma- ratios then differ
+/// from row to row and are stored per vertex).
+ControlPolylines general_open_input(std::size_t profiles, std::size_t n, bool mixed_signs = false);
 
 /// The open P-hedron of general_open_input with about `vertices` vertices: 1000
 /// a profile from 10^6 vertices on, 100 from 10^4 on, 10 below.
-ControlPolylines open_input_with_vertices(std::size_t vertices);
+ControlPolylines open_input_with_vertices(std::size_t vertices, bool mixed_signs = false);
 
 /// A 10 x 10 (cells x cells) parallelogram array on a helical trajectory of
 /// `segments` segments: every cell face-coupled to its neighbours and

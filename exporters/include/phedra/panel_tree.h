@@ -47,6 +47,8 @@ class PanelTree {
 
   /// World poses from local ones (parents before children).
   std::vector<RigidPose> world_poses(const std::vector<RigidPose>& local) const;
+  /// The same into `world` (resized; no allocation when it has the size already).
+  void world_poses(const std::vector<RigidPose>& local, std::vector<RigidPose>& world) const;
 
  private:
   RigidPose world_pose(std::size_t panel, std::span<const Vec3> positions) const;

@@ -29,7 +29,7 @@ class NetMotion {
   std::size_t columns() const { return columns_; }
 
   /// rho_{i,0..n-2} and the transversal scales q_{i,0..n-1} of row i.
-  const double* row_ratios(std::size_t i) const { return &ratios_[i * (columns_ - 1)]; }
+  const double* row_ratios(std::size_t i) const { return &ratios_[i * ratio_stride_]; }
   const double* row_scales(std::size_t i) const { return &scales_[i * columns_]; }
 
   /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
@@ -38,7 +38,7 @@ class NetMotion {
 
   /// Row i of the axial net from row[0] and the apexes: A[i][j+1] = S_{j+1} + rho (A[i][j] - S_{j+1}).
   void fill_row(std::size_t i, const double* s, Vec3* row) const {
-    const double* rho = &ratios_[i * (columns_ - 1)];
+    const double* rho = row_ratios(i);
     for (std::size_t j = 0; j + 1 < columns_; ++j) {
       const double c = s[j + 1];
       const Vec3& a = row[j];
@@ -58,7 +58,10 @@ class NetMotion {
 
  private:
   std::size_t rows_ = 0, columns_ = 0;
-  std::vector<double> ratios_;  ///< rho_{i,j}, rows x (n - 1)
+  /// rho_{i,j}, rows x (n - 1); a single row when every sign is '+' (a sigma+
+  /// ratio depends on the apex heights alone, not on the row), stride 0 then.
+  std::vector<double> ratios_;
+  std::size_t ratio_stride_ = 0;
   std::vector<double> scales_;  ///< parallel-net transversal scale factors, rows x n
   std::vector<double> mirror_;  ///< +1 for '+', -1 for '-' (M+/M- on z), n - 1
 };
