@@ -65,7 +65,7 @@ TEST_CASE("info prints the figures, --json has the documented keys", "[cli]") {
   CHECK(info["isometry"].get<double>() < 1e-9);
 }
 
-TEST_CASE("sample: labels, faces, samples in command-line order; fractions 0 and 1 are the limits", "[cli]") {
+TEST_CASE("sample: labels, faces, samples in command-line order, fractions 0 and 1 are the limits", "[cli]") {
   const std::string preset = presets + "/default.json";
   const PHedron p(load_preset(preset));
   const Run r = phedra_cli({"sample", preset, "--fraction", "1", "--t", "1.0", "--fraction", "0"});
@@ -141,7 +141,7 @@ TEST_CASE("check exits 1 when a figure exceeds the tolerance", "[cli]") {
   CHECK_THAT(r.out, Contains("FAIL"));
 }
 
-TEST_CASE("bad input and bad usage: clear message, exit 2; unreadable file: exit 3", "[cli]") {
+TEST_CASE("bad input and bad usage: clear message, exit 2, unreadable file: exit 3", "[cli]") {
   const fs::path dir = scratch_directory();
   const fs::path bad = dir / "bad.json";
   std::ofstream(bad) << "{\"trajectory\": [[1,0,0],[2,0,0]],\n \"directions\": [[1,0,0],[0,1,0]], \"apex_heights\": "

@@ -32,7 +32,7 @@ Points y_up_positions(const Design& d, const AssemblyMesh& mesh, double t) {
 
 }  // namespace
 
-TEST_CASE("panel tree: poses reproduce every configuration; tree hinges stay closed between keyframes", "[exports]") {
+TEST_CASE("panel tree: poses reproduce every configuration, tree hinges stay closed between keyframes", "[exports]") {
   for (const std::string preset : {"default", "grid-3x3", "merged-tube", "anti-parallelogram-tube"}) {
     CAPTURE(preset);
     const Design d = design(preset);

@@ -103,7 +103,7 @@ TEST_CASE("phedra bench --quick: every figure finite, the accuracy and closure f
   CHECK(text.str().find("evaluate.linearity") != std::string::npos);
 }
 
-TEST_CASE("phedra bench --quick --json -o FILE writes the report; bad options are refused", "[performance][cli]") {
+TEST_CASE("phedra bench --quick --json -o FILE writes the report, bad options are refused", "[performance][cli]") {
   const std::filesystem::path file =
       std::filesystem::temp_directory_path() / ("phedra-bench-" + std::to_string(::getpid()) + ".json");
   std::ostringstream out, err;

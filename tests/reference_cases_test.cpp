@@ -74,7 +74,7 @@ TEST_CASE("reference cases: t*, case, interval and positions (open P-hedra and t
   }
 }
 
-TEST_CASE("every reference case loads unchanged; t*, case and interval ends agree (tubes too)", "[reference]") {
+TEST_CASE("every reference case loads unchanged, t*, case and interval ends agree (tubes too)", "[reference]") {
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(PHEDRA_TEST_DATA_DIR) / "cases")) {
     if (entry.path().extension() != ".json") continue;
     CAPTURE(entry.path().filename().string());
