@@ -4,6 +4,7 @@
 #include "phedra/tube.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <tuple>
 #include <ostream>
@@ -49,11 +50,13 @@ class AssemblyChecker {
         r_.member_closure[m] = std::max(r_.member_closure[m], gap.value);
       }
     }
+    member_data_.resize(configuration_.members.size());
+    for (std::size_t m = 0; m < member_data_.size(); ++m) member_data_[m] = configuration_.members[m].data();
     for (const auto& [first, other] : shared_pairs_) {
-      const double d = (configuration_.members[other.member][other.vertex] -
-                        configuration_.members[first.member][first.vertex])
-                           .norm();
-      if (!(d <= r_.shared.value)) {
+      const double d2 = (member_data_[other.member][other.vertex] - member_data_[first.member][first.vertex]).squaredNorm();
+      if (!(d2 <= shared_squared_) && !std::isnan(shared_squared_)) {  // NaN, once found, stays
+        shared_squared_ = d2;
+        const double d = std::sqrt(d2);
         r_.shared.update(d, t, prefix(first.member) + "vertex " + label(first) + " and " + prefix(other.member) +
                                    "vertex " + label(other));
       }
@@ -92,6 +95,8 @@ class AssemblyChecker {
   const Assembly& a_;
   bool shape_ = true;
   std::vector<std::pair<VertexRef, VertexRef>> shared_pairs_;
+  std::vector<const Vec3*> member_data_;  ///< configuration_.members[m].data()
+  double shared_squared_ = 0.0;           ///< r_.shared.value squared (NaN: reported already)
   AssemblyConfiguration configuration_;
   std::vector<std::unique_ptr<FigureTracker>> figures_;
   AssemblyCheckReport r_;
