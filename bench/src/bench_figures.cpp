@@ -116,6 +116,24 @@ double peak_bytes_in_child(Work&& work) {
   return result;
 }
 
+/// Seconds of evaluate(t) at 3/10 of the interval, and of writing the same
+/// buffer (the memory-bandwidth reference), measured one after the other.
+std::pair<double, double> evaluate_and_write_seconds(const PHedron& p) {
+  Points out(p.vertex_count());
+  const double t = p.t_at_fraction(0.3);
+  const double evaluate_s = best_seconds([&] {
+    p.evaluate(t, out);
+    keep(out.data());
+  });
+  double x = 0.0;
+  const double write_s = best_seconds([&] {
+    x += 1.0;
+    for (Vec3& v : out) v = Vec3(x, x, x);
+    keep(out.data());
+  });
+  return {evaluate_s, write_s};
+}
+
 /// Bytes of a GLB file and the sum of its accessors' data (count x element size).
 struct GlbSizes {
   double file = 0.0, payload = 0.0;
@@ -172,19 +190,8 @@ class Runner {
     for (std::size_t n : sizes) {
       announce("evaluate(t), " + std::to_string(n) + " vertices");
       const PHedron p(open_input_with_vertices(n));
-      Points out(p.vertex_count());
-      const double t = p.t_at_fraction(0.3);
       const double vertices = static_cast<double>(p.vertex_count());
-      const double evaluate_s = best_seconds([&] {
-        p.evaluate(t, out);
-        keep(out.data());
-      });
-      double x = 0.0;
-      const double write_s = best_seconds([&] {
-        x += 1.0;
-        for (Vec3& v : out) v = Vec3(x, x, x);
-        keep(out.data());
-      });
+      const auto [evaluate_s, write_s] = evaluate_and_write_seconds(p);
       evaluate_ns.push_back(1e9 * evaluate_s / vertices);
       write_ns.push_back(1e9 * write_s / vertices);
       const std::string e = power_of_ten(n);
@@ -204,18 +211,7 @@ class Runner {
       const std::size_t n = options_.quick ? 100000 : 1000000;
       announce("evaluate(t) with mixed signs, " + std::to_string(n) + " vertices");
       const PHedron p(open_input_with_vertices(n, true));
-      Points out(p.vertex_count());
-      const double t = p.t_at_fraction(0.3);
-      const double evaluate_s = best_seconds([&] {
-        p.evaluate(t, out);
-        keep(out.data());
-      });
-      double x = 0.0;
-      const double write_s = best_seconds([&] {
-        x += 1.0;
-        for (Vec3& v : out) v = Vec3(x, x, x);
-        keep(out.data());
-      });
+      const auto [evaluate_s, write_s] = evaluate_and_write_seconds(p);
       add("evaluate.ratio_to_write_" + power_of_ten(n) + "_mixed_signs",
           "evaluate(t) / buffer write, " + ten_to(n) + " vertices, every third sign '-'", evaluate_s / write_s, "x",
           n == 1000000 ? std::optional<double>(3.0) : std::nullopt);

@@ -142,13 +142,26 @@ double PHedron::strip_margin(double t, std::size_t strip) const {
   return chain_.strip_margin(strip, start.s0, start.s1, start.x);
 }
 
-template <class RowSink>
-void PHedron::run_rows(double t, RowSink&& sink) const {
+LinkageStart PHedron::start_at(double t) const {
   if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
-  const std::size_t n = motion_.columns();
   LinkageStart start;
   double margin;
   if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
+  return start;
+}
+
+void PHedron::advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out) const {
+  double margin;
+  if (!chain_.advance(i, s[0], s[1], previous, out, margin, true)) {
+    throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
+                                        format_number(t) + " inside the flexion interval");
+  }
+}
+
+template <class RowSink>
+void PHedron::run_rows(double t, RowSink&& sink) const {
+  const LinkageStart start = start_at(t);
+  const std::size_t n = motion_.columns();
   std::vector<double> s(n + 1);
   Points previous_a(n), current_a(n), previous_g(n), current_g(n);
   motion_.complete_first_row(start.s0, start.s1, Vec3(start.x, 0, 0), s.data(), current_a.data());
@@ -157,10 +170,7 @@ void PHedron::run_rows(double t, RowSink&& sink) const {
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
     std::swap(previous_a, current_a);
     std::swap(previous_g, current_g);
-    if (!chain_.advance(i, s[0], s[1], previous_a[0], current_a[0], margin, true)) {
-      throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
-                                          format_number(t) + " inside the flexion interval");
-    }
+    advance_column(i, t, s.data(), previous_a[0], current_a[0]);
     motion_.fill_row(i, s.data(), current_a.data());
     motion_.advance_general_row(i, previous_a.data(), current_a.data(), previous_g.data(), current_g.data());
     sink(i, s.data(), current_a.data(), current_g.data());
@@ -172,14 +182,11 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
     throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
                                         std::to_string(vertex_count()));
   }
-  if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
   // The recursions of the motion are affine, so after column 0 (the strip chain,
   // canonical frame) every row runs in the user's frame and goes straight to `out`:
   // per vertex one step of the rho recursion and one of the general-net recursion.
+  const LinkageStart start = start_at(t);
   const std::size_t n = motion_.columns();
-  LinkageStart start;
-  double margin;
-  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
   std::vector<double> s(n + 1);
   Points scratch(3 * n + 1);
   Vec3* const apex = scratch.data();    // S_0..S_n, user frame
@@ -215,10 +222,7 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
   finish_row(0, general);
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
     Vec3 next;
-    if (!chain_.advance(i, s[0], s[1], column0, next, margin, true)) {
-      throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
-                                          format_number(t) + " inside the flexion interval");
-    }
+    advance_column(i, t, s.data(), column0, next);
     column0 = next;
     const double* rho = motion_.row_ratios(i);
     const double* q = motion_.row_scales(i);
@@ -255,10 +259,7 @@ void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::
 }
 
 std::vector<double> PHedron::apex_heights(double t) const {
-  if (!interval_.contains(t)) throw OutOfIntervalError(t, interval_.lower.t, interval_.upper.t);
-  LinkageStart start;
-  double margin;
-  if (!linkage_.start(canonical_t(t), start, margin)) start.x = 0.0;  // only at the bound, by rounding
+  const LinkageStart start = start_at(t);
   std::vector<double> heights(motion_.columns() + 1);
   Points row(motion_.columns());
   motion_.complete_first_row(start.s0, start.s1, Vec3(start.x, 0, 0), heights.data(), row.data());

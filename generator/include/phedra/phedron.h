@@ -93,6 +93,10 @@ class PHedron {
  private:
   double canonical_t(double t) const { return frame_.height_to_canonical(t); }
   StripMargin canonical_margin(double tc) const;
+  /// S_0, S_1, V_{0,0} at t (OutOfIntervalError outside the flexion interval).
+  LinkageStart start_at(double t) const;
+  /// V_{i,0} from V_{i-1,0} = previous and the apexes s[0], s[1] at t (Error(internal) if not real).
+  void advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out) const;
   /// Runs the motion at t row by row: sink(i, apexes, axial_row, general_row), canonical frame.
   template <class RowSink>
   void run_rows(double t, RowSink&& sink) const;
