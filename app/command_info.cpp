@@ -18,6 +18,29 @@ struct InfoOptions {
   bool json = false;
 };
 
+/// The strips a branch has switched, "input branch" for none.
+std::string branch_name(const std::vector<bool>& flipped) {
+  std::string s;
+  for (std::size_t i = 1; i < flipped.size(); ++i) {
+    if (flipped[i]) s += (s.empty() ? "strips " : ", ") + std::to_string(i);
+  }
+  return s.empty() ? "input branch" : s + " mirrored";
+}
+
+nlohmann::json curve_json(const PHedron::ConfigurationCycle& c) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const PHedron::Pass& p : c.passes) {
+    std::vector<std::size_t> mirrored;
+    for (std::size_t i = 1; i < p.flipped.size(); ++i) {
+      if (p.flipped[i]) mirrored.push_back(i);
+    }
+    passes.push_back({{"from", p.from}, {"to", p.to}, {"switched_strip", p.switched}, {"mirrored_strips", mirrored}});
+  }
+  nlohmann::json j{{"closed", c.closed}, {"passes", passes}};
+  if (!c.stop.empty()) j["stop"] = c.stop;
+  return j;
+}
+
 std::string limit_cause(std::size_t strip) {
   if (strip == 0) return "linkage L_0 (V_{0,0} reaches the axis)";
   return "strip " + std::to_string(strip) + " (profile planes " + std::to_string(strip - 1) + " and " +
@@ -57,6 +80,7 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
                    {"reproduction", at_star.reproduction},
                    {"at_t_star", at_star.to_json()}};
   if (a.member_count() == 1) {
+    j["configuration_curve"] = curve_json(p.configuration_cycle());
     j["rows"] = g.rows();
     j["columns"] = g.columns();
     j["edges"] = g.edge_count();
@@ -91,7 +115,19 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << "t*:                " << format_number(a.t_star()) << '\n'
       << "flexion interval:  [" << format_number(f.lower.t) << ", " << format_number(f.upper.t) << "]\n"
       << "  t_lambda limit:  " << limit_cause(f.lower.strip) << '\n'
-      << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n'
+      << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n';
+  if (a.member_count() == 1) {
+    // The whole curve through the limits (paper, Remark 3).
+    const PHedron::ConfigurationCycle c = p.configuration_cycle();
+    out << "configuration curve: " << c.passes.size() << " passes, "
+        << (c.closed ? "closed (back at t* on the input branch)" : "open: " + c.stop) << '\n';
+    for (const PHedron::Pass& pass : c.passes) {
+      out << "  " << (pass.switched ? "strip " + std::to_string(pass.switched) + " switches, " : std::string())
+          << "t " << format_number(pass.from) << " -> " << format_number(pass.to) << "  (" << branch_name(pass.flipped)
+          << ")\n";
+    }
+  }
+  out
       << "model size:        " << format_number(size) << " (bounding-box diagonal at t*)\n"
       << "at t*:             planarity " << format_number(at_star.planarity.value / size) << ", isometry "
       << format_number(at_star.isometry.value / size) << ", reproduction "

@@ -150,9 +150,10 @@ LinkageStart PHedron::start_at(double t) const {
   return start;
 }
 
-void PHedron::advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out) const {
+void PHedron::advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out,
+                             const std::vector<bool>* flipped) const {
   double margin;
-  if (!chain_.advance(i, s[0], s[1], previous, out, margin, true)) {
+  if (!chain_.advance(i, s[0], s[1], previous, out, margin, true, flipped && (*flipped)[i])) {
     throw Error(ExitCode::internal, "evaluate: strip " + std::to_string(i) + " has no real position at t = " +
                                         format_number(t) + " inside the flexion interval");
   }
@@ -178,6 +179,49 @@ void PHedron::run_rows(double t, RowSink&& sink) const {
 }
 
 void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
+  evaluate_on(t, nullptr, out, gap);
+}
+
+void PHedron::evaluate(double t, const std::vector<bool>& flipped, std::span<Vec3> out, ClosureGap* gap) const {
+  if (flipped.size() != motion_.rows()) {
+    throw Error(ExitCode::internal, "evaluate: branch of " + std::to_string(flipped.size()) + " strips, expected " +
+                                        std::to_string(motion_.rows()));
+  }
+  evaluate_on(t, &flipped, out, gap);
+}
+
+PHedron::ConfigurationCycle PHedron::configuration_cycle() const {
+  ConfigurationCycle cycle;
+  const std::vector<bool> input(motion_.rows(), false);
+  std::vector<bool> branch = input;
+  double t = t_star_;
+  bool upward = true;
+  std::size_t switched = 0;
+  // At most: both ends switch two strips each before the input branch returns.
+  for (int pass = 0; pass < 8; ++pass) {
+    const FlexionLimit& end = upward ? interval_.upper : interval_.lower;
+    const bool back_home = branch == input && pass > 0;
+    const double to = back_home && (upward ? t_star_ >= t : t_star_ <= t) ? t_star_ : end.t;
+    cycle.passes.push_back({t, to, branch, switched});
+    if (to == t_star_ && back_home) {
+      cycle.closed = true;
+      return cycle;
+    }
+    if (end.strip == 0) {
+      cycle.stop = std::string("t = ") + format_number(end.t) + ": the linkage L_0 reaches its limit (V_{0,0} on the "
+                   "axis), which the motion cannot pass";
+      return cycle;
+    }
+    branch[end.strip] = !branch[end.strip];
+    switched = end.strip;
+    t = end.t;
+    upward = !upward;
+  }
+  cycle.stop = "the branches do not return to the input branch within 8 passes";
+  return cycle;
+}
+
+void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<Vec3> out, ClosureGap* gap) const {
   if (out.size() != vertex_count()) {
     throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
                                         std::to_string(vertex_count()));
@@ -222,7 +266,7 @@ void PHedron::evaluate(double t, std::span<Vec3> out, ClosureGap* gap) const {
   finish_row(0, general);
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
     Vec3 next;
-    advance_column(i, t, s.data(), column0, next);
+    advance_column(i, t, s.data(), column0, next, flipped);
     column0 = next;
     const double* rho = motion_.row_ratios(i);
     const double* q = motion_.row_scales(i);

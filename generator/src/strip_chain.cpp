@@ -37,7 +37,7 @@ StripChain::StripChain(const Points& column, double s0, double s1) {
 }
 
 bool StripChain::advance(std::size_t i, double s0, double s1, const Vec3& p, Vec3& out, double& margin,
-                         bool clamp) const {
+                         bool clamp, bool flipped) const {
   const std::size_t k = i - 1;
   const double r0 = r0_squared_[k], r1 = r1_squared_[k];
   // Height where the spheres about S_0 and S_1 meet, and the circle's radius.
@@ -54,7 +54,7 @@ bool StripChain::advance(std::size_t i, double s0, double s1, const Vec3& p, Vec
     if (!clamp || !(margin >= -clamp_margin)) return false;
     margin = 0.0;
   }
-  const double sine = branch_[k] * std::sqrt(margin);
+  const double sine = (flipped ? -branch_[k] : branch_[k]) * std::sqrt(margin);
   const double cosine = c > 1.0 ? 1.0 : (c < -1.0 ? -1.0 : c);
   const double ux = p.x() / rho, uy = p.y() / rho;
   out = Vec3(radius * (cosine * ux - sine * uy), radius * (cosine * uy + sine * ux), h);

@@ -15,6 +15,7 @@
 #include "phedra/strip_chain.h"
 
 #include <span>
+#include <string>
 #include <vector>
 
 namespace phedra {
@@ -67,6 +68,30 @@ class PHedron {
   void evaluate(double t, std::span<Vec3> out, ClosureGap* gap = nullptr) const;
   Points evaluate(double t) const;
 
+  /// The motion on another branch: strips whose `flipped` entry is true (index =
+  /// strip, size m + 1, entry 0 unused) take the mirror of their input branch.
+  /// The flexion interval is the same on every branch (a strip's margin depends
+  /// on the apexes alone), so these are the other passes of the configuration
+  /// curve (configuration_cycle()).
+  void evaluate(double t, const std::vector<bool>& flipped, std::span<Vec3> out, ClosureGap* gap = nullptr) const;
+
+  /// The whole configuration curve through the flexion limits (paper, Remark 3):
+  /// from t* to t_mu on the input branch; at a limit caused by strip i >= 1, strip
+  /// i switches to its mirror branch and t runs back across the interval, and so
+  /// on until the input branch is back at t*. A limit of the linkage L_0 (V_{0,0}
+  /// on the axis) cannot be passed: the curve stops there and is not closed.
+  struct Pass {
+    double from = 0.0, to = 0.0;    ///< t runs from `from` to `to`
+    std::vector<bool> flipped;      ///< the branch (as for evaluate)
+    std::size_t switched = 0;       ///< the strip switched at the start of this pass (0: none)
+  };
+  struct ConfigurationCycle {
+    std::vector<Pass> passes;
+    bool closed = false;            ///< back at t* on the input branch
+    std::string stop;               ///< why it is not closed
+  };
+  ConfigurationCycle configuration_cycle() const;
+
   /// The axial and the general net at t in the canonical frame (rows x n, row-major,
   /// no boundary columns) and the apex heights s_0..s_n (canonical): what the
   /// members of an assembly are seeded on.
@@ -95,8 +120,10 @@ class PHedron {
   StripMargin canonical_margin(double tc) const;
   /// S_0, S_1, V_{0,0} at t (OutOfIntervalError outside the flexion interval).
   LinkageStart start_at(double t) const;
+  void evaluate_on(double t, const std::vector<bool>* flipped, std::span<Vec3> out, ClosureGap* gap) const;
   /// V_{i,0} from V_{i-1,0} = previous and the apexes s[0], s[1] at t (Error(internal) if not real).
-  void advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out) const;
+  void advance_column(std::size_t i, double t, const double* s, const Vec3& previous, Vec3& out,
+                      const std::vector<bool>* flipped = nullptr) const;
   /// Runs the motion at t row by row: sink(i, apexes, axial_row, general_row), canonical frame.
   template <class RowSink>
   void run_rows(double t, RowSink&& sink) const;

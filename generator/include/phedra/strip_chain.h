@@ -33,8 +33,10 @@ class StripChain {
   /// when strip i has no real position at this t; `margin` gets 1 - c^2.
   /// With `clamp`, a margin slightly below zero (down to -clamp_margin: rounding
   /// at a flexion limit) is treated as zero.
+  /// `flipped`: strip i takes the mirror of its input branch (the continuation of
+  /// the motion through a flexion limit of strip i, paper Remark 3).
   bool advance(std::size_t i, double s0, double s1, const Vec3& previous, Vec3& out, double& margin,
-               bool clamp = false) const;
+               bool clamp = false, bool flipped = false) const;
 
   /// The smallest margin over the strips at apexes s0, s1 with V_{0,0}(t) =
   /// (x, 0, 0), and its strip. Each strip's margin depends only on the heights and
