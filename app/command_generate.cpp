@@ -27,6 +27,7 @@ struct GenerateOptions {
   double hinge_tolerance = 1e-3;
   bool quiet = false;
   bool morph = false;
+  bool cycle = false;
 };
 
 enum class Format { glb, gltf, json, fold, obj, ply };
@@ -49,6 +50,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   options.ping_pong = o.ping_pong;
   options.static_t = o.static_t;
   options.morph = o.morph;
+  options.cycle = o.cycle;
   options.keyframes.relative_tolerance = o.hinge_tolerance;
   Progress progress(context.err, "keyframes", !o.quiet);
   options.progress = [&](double fraction, std::size_t count) {
@@ -68,9 +70,19 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
     context.out << ", static at t = " << format_number(*o.static_t) << '\n';
     return;
   }
-  context.out << ", " << report.keyframes << " keyframes over [" << format_number(design.assembly.flexion_interval().lower.t)
-              << ", " << format_number(design.assembly.flexion_interval().upper.t) << "] in "
-              << format_number(o.seconds) << " s" << (o.ping_pong ? " and back" : "") << '\n'
+  if (o.cycle) {
+    const PHedron::ConfigurationCycle c = design.assembly.base().configuration_cycle();
+    context.out << ", " << report.keyframes << " keyframes along the configuration curve (" << c.passes.size()
+                << " passes through the flexion limits, " << (c.closed ? "closed" : "open: " + c.stop) << "), "
+                << format_number(o.seconds) << " s a full traversal of the interval" << (o.ping_pong ? ", and back" : "")
+                << '\n';
+  } else {
+    context.out << ", " << report.keyframes << " keyframes over ["
+                << format_number(design.assembly.flexion_interval().lower.t) << ", "
+                << format_number(design.assembly.flexion_interval().upper.t) << "] in " << format_number(o.seconds)
+                << " s" << (o.ping_pong ? " and back" : "") << '\n';
+  }
+  context.out
               << (o.morph ? "largest vertex error between keyframes: " : "largest hinge opening between keyframes: ")
               << format_number(report.max_opening) << " (" << format_number(report.max_opening / report.model_size)
               << " of the model size, tolerance " << format_number(o.hinge_tolerance) << ")\n";
@@ -98,6 +110,9 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_flag("--morph", o->morph,
                 "glTF: morph targets (one per keyframe, sparse one-hot weights, at most 250) instead of a node per panel");
+  sub->add_flag("--cycle", o->cycle,
+                "glTF: animate the whole configuration curve through the flexion limits (strips switch to their mirror "
+                "branch at each limit, see phedra info); single P-hedra and tubes");
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {
@@ -107,6 +122,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       write_gltf(context, design, *o, format == Format::glb);
       return;
     }
+    if (o->cycle) throw InvalidInputError("--cycle", "the configuration curve is exported as glTF (.glb, .gltf) only");
     if (format == Format::obj || format == Format::ply) {
       const double t = o->static_t.value_or(design.assembly.t_star());
       const FlexionInterval& f = design.assembly.flexion_interval();

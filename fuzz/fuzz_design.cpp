@@ -46,6 +46,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (const Vec3& p : member) must(p.allFinite());
       }
     }
+    // The configuration curve: every pass inside the interval, every branch finite.
+    const PHedron& base = a.base();
+    const PHedron::ConfigurationCycle cycle = base.configuration_cycle();
+    must(!cycle.passes.empty() && (cycle.closed || !cycle.stop.empty()));
+    Points on_branch(base.vertex_count());
+    for (const PHedron::Pass& pass : cycle.passes) {
+      must(base.flexion_interval().contains(pass.from) && base.flexion_interval().contains(pass.to));
+      base.evaluate(0.5 * (pass.from + pass.to), pass.flipped, on_branch);
+      for (const Vec3& p : on_branch) must(p.allFinite());
+    }
     CheckOptions options;
     options.samples = 5;
     const AssemblyCheckReport report = check_assembly(a, options);

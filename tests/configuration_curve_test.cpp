@@ -6,12 +6,15 @@
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/geometry_checks.h"
+#include "phedra/gltf_export.h"
 #include "phedra/phedron.h"
 #include "support/random_input.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <filesystem>
 #include <random>
 #include <sstream>
 
@@ -126,4 +129,48 @@ TEST_CASE("phedra info lists the configuration curve", "[curve][cli]") {
   REQUIRE(cli::run({"info", std::string(PHEDRA_PRESETS_DIR) + "/default.json"}, text, text_err) == 0);
   CHECK(text.str().find("configuration curve: 5 passes, closed") != std::string::npos);
   CHECK(text.str().find("strip 1 switches") != std::string::npos);
+}
+
+TEST_CASE("glTF --cycle: the whole curve, pass boundaries as keyframes, hinges within tolerance", "[curve][exports]") {
+  for (const char* name : {"default", "parallelogram-tube"}) {
+    for (const bool morph : {false, true}) {
+      CAPTURE(name, morph);
+      const Design d = load_design(std::string(PHEDRA_PRESETS_DIR) + "/" + name + ".json");
+      const PHedron::ConfigurationCycle c = d.assembly.base().configuration_cycle();
+      GltfOptions options;
+      options.cycle = true;
+      options.morph = morph;
+      options.binary = false;
+      GltfReport report;
+      const nlohmann::json j = nlohmann::json::parse(gltf_bytes(d, options, &report));
+      CHECK(report.max_opening <= report.tolerance);
+      const nlohmann::json& extras = j["asset"]["extras"]["phedra"];
+      CHECK(extras["cycle"].size() == c.passes.size());
+      const std::vector<double> ts = extras["keyframe_t"].get<std::vector<double>>();
+      REQUIRE(ts.size() == report.keyframes);
+      CHECK(ts.front() == d.assembly.t_star());
+      CHECK(ts.back() == d.assembly.t_star());
+      // Every switch is a keyframe: the limits appear once per pass boundary.
+      const auto limits = [&](double t) { return std::count(ts.begin(), ts.end(), t); };
+      CHECK(limits(d.assembly.flexion_interval().upper.t) >= 2);
+      CHECK(limits(d.assembly.flexion_interval().lower.t) >= 2);
+      // Animation times increase; one traversal of the interval takes `seconds`.
+      const int input = j["animations"][0]["samplers"][0]["input"];
+      CHECK(j["accessors"][input]["count"] == ts.size());
+      double travelled = 0.0;
+      for (const PHedron::Pass& p : c.passes) travelled += std::abs(p.to - p.from);
+      CHECK(j["accessors"][input]["max"][0].get<double>() ==
+            Approx(travelled / d.assembly.flexion_interval().width() * options.seconds).epsilon(1e-6));
+    }
+  }
+  // Arrays and non-glTF outputs refuse --cycle (exit 2, named option).
+  std::ostringstream out, err;
+  CHECK(cli::run({"generate", std::string(PHEDRA_PRESETS_DIR) + "/grid-3x3.json", "-o", "/tmp/never.glb", "--cycle"},
+                 out, err) == 2);
+  CHECK(err.str().find("--cycle") != std::string::npos);
+  CHECK(!std::filesystem::exists("/tmp/never.glb"));
+  std::ostringstream out2, err2;
+  CHECK(cli::run({"generate", std::string(PHEDRA_PRESETS_DIR) + "/default.json", "-o", "/tmp/never.fold", "--cycle"},
+                 out2, err2) == 2);
+  CHECK(err2.str().find("glTF") != std::string::npos);
 }

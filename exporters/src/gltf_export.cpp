@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <sstream>
 
 namespace phedra {
@@ -113,19 +114,100 @@ std::map<double, Points> morph_keyframes(const std::function<Points(double)>& po
   return frames;
 }
 
+/// What an animation follows: a parameter u over [lo, hi] (the motion parameter t
+/// itself, or the position along the configuration curve), the Y-up mesh
+/// positions there, the t it stands for and its animation time.
+struct MotionPath {
+  double lo = 0.0, hi = 1.0;
+  double rest = 0.0;                ///< u of the configuration at t* (the rest pose)
+  std::size_t minimum_keyframes = 2;  ///< evenly spread start keyframes needed (pass boundaries)
+  std::function<Points(double)> positions;
+  std::function<double(double)> t_of;
+  std::function<double(double)> seconds_of;
+};
+
+Points y_up(Points p) {
+  for (Vec3& x : p) x = to_y_up(x);
+  return p;
+}
+
+/// t over the flexion interval: `seconds` from t_lambda to t_mu.
+MotionPath interval_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
+  const Assembly& a = design.assembly;
+  const double lo = a.flexion_interval().lower.t, width = a.flexion_interval().width();
+  MotionPath path;
+  path.lo = lo;
+  path.hi = a.flexion_interval().upper.t;
+  path.rest = a.t_star();
+  path.positions = [&a, &mesh](double t) { return y_up(mesh.positions(a.evaluate(t))); };
+  path.t_of = [](double t) { return t; };
+  path.seconds_of = [lo, width, seconds = options.seconds](double t) { return (t - lo) / width * seconds; };
+  return path;
+}
+
+/// The configuration curve (PHedron::configuration_cycle): pass k is u in [k, k+1]
+/// on its branch; each pass takes `seconds` times its share of the interval.
+MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
+  const Assembly& a = design.assembly;
+  if (a.member_count() != 1) {
+    throw InvalidInputError("--cycle", "the configuration curve is traced for single P-hedra and tubes; the members "
+                                       "of an array follow the base on its input branch only");
+  }
+  if (options.static_t) throw InvalidInputError("--cycle", "a static export (--at) has no cycle");
+  auto passes = std::make_shared<std::vector<PHedron::Pass>>(a.base().configuration_cycle().passes);
+  const double width = a.flexion_interval().width();
+  auto start_seconds = std::make_shared<std::vector<double>>(1, 0.0);
+  for (const PHedron::Pass& p : *passes) {
+    start_seconds->push_back(start_seconds->back() + std::abs(p.to - p.from) / width * options.seconds);
+  }
+  auto locate = [passes](double u, double& t) -> const PHedron::Pass& {
+    const std::size_t k = std::min(static_cast<std::size_t>(std::max(u, 0.0)), passes->size() - 1);
+    const PHedron::Pass& p = (*passes)[k];
+    const double s = u - static_cast<double>(k);
+    t = s >= 1.0 ? p.to : p.from + s * (p.to - p.from);
+    return p;
+  };
+  MotionPath path;
+  path.lo = 0.0;
+  path.hi = static_cast<double>(passes->size());
+  path.rest = 0.0;
+  path.minimum_keyframes = 2 * passes->size() + 1;
+  const PHedron& p = a.base();
+  path.positions = [locate, &p, &mesh](double u) {
+    double t;
+    const PHedron::Pass& pass = locate(u, t);
+    AssemblyConfiguration c;
+    c.t = t;
+    c.members.assign(1, Points(p.vertex_count()));
+    c.closure.assign(1, ClosureGap{});
+    p.evaluate(t, pass.flipped, c.members[0], &c.closure[0]);
+    return y_up(mesh.positions(c));
+  };
+  path.t_of = [locate](double u) {
+    double t;
+    locate(u, t);
+    return t;
+  };
+  path.seconds_of = [passes, start_seconds](double u) {
+    const std::size_t k = std::min(static_cast<std::size_t>(std::max(u, 0.0)), passes->size() - 1);
+    const double s = std::min(u - static_cast<double>(k), 1.0);
+    return (*start_seconds)[k] + s * ((*start_seconds)[k + 1] - (*start_seconds)[k]);
+  };
+  return path;
+}
+
 /// The morph-target representation: one node, one mesh (a primitive per member),
 /// one target per keyframe, weights animated one-hot (stored sparse).
 void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
-                 const std::function<Points(double)>& positions, const GltfOptions& options, GltfReport& report,
+                 const MotionPath& path, const GltfOptions& options, GltfReport& report,
                  tinygltf::Value::Array& keyframe_t) {
   const Assembly& assembly = design.assembly;
-  const double lo = assembly.flexion_interval().lower.t, width = assembly.flexion_interval().width();
   const std::map<double, Points> frames =
-      morph_keyframes(positions, lo, assembly.flexion_interval().upper.t,
-                      options.keyframes.relative_tolerance * assembly.model_size(), options.keyframes.initial,
-                      std::min(options.max_morph_targets, options.keyframes.maximum),
-                      report.max_opening, report.opening_t);
-  const Points base = positions(assembly.t_star());
+      morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
+                      std::max(options.keyframes.initial, path.minimum_keyframes),
+                      std::min(options.max_morph_targets, options.keyframes.maximum), report.max_opening,
+                      report.opening_t);
+  const Points base = path.positions(path.rest);
   auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {
     std::vector<double> lo3(3, INFINITY), hi3(3, -INFINITY);
     for (std::size_t k = 0; k < data.size(); ++k) {
@@ -142,13 +224,13 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   }
   const int base_accessor = add_positions(base_data, true);
   std::vector<int> targets;
-  for (const auto& [t, p] : frames) {
+  for (const auto& [u, p] : frames) {
     std::vector<float> delta;
     for (std::size_t v = 0; v < p.size(); ++v) {
       for (int c = 0; c < 3; ++c) delta.push_back(checked(p[v][c] - static_cast<double>(base_data[v * 3 + c])));
     }
     targets.push_back(add_positions(delta, true));
-    keyframe_t.push_back(tinygltf::Value(t));
+    keyframe_t.push_back(tinygltf::Value(path.t_of(u)));
   }
   tinygltf::Mesh m;
   m.name = assembly.name();
@@ -184,7 +266,7 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 
   const std::size_t count = targets.size();
   std::vector<float> times;
-  for (const auto& [t, p] : frames) times.push_back(checked((t - lo) / width * options.seconds));
+  for (const auto& [u, p] : frames) times.push_back(checked(path.seconds_of(u)));
   const int time_view = buffer.add_view(times, 0);
   const int time_accessor = buffer.add_accessor(time_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
                                                 times.size(), {times.front()}, {times.back()});
@@ -226,11 +308,10 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 
 /// The node representation: one node per panel on a hinge spanning tree.
 void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
-                 const std::function<Points(double)>& positions, const GltfOptions& options, GltfReport& report,
+                 const MotionPath& path, const GltfOptions& options, GltfReport& report,
                  tinygltf::Value::Array& keyframe_t) {
   const Assembly& assembly = design.assembly;
-  const double rest_t = assembly.t_star();
-  const Points reference = positions(rest_t);
+  const Points reference = path.positions(path.rest);
   const PanelTree tree(mesh.faces, reference);
   const double size = assembly.model_size();
 
@@ -260,10 +341,11 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   Keyframes keys;
   if (options.static_t) {
     keys.t = {*options.static_t};
-    keys.local = {tree.local_poses(positions(*options.static_t))};
+    keys.local = {tree.local_poses(path.positions(*options.static_t))};
   } else {
-    keys = choose_keyframes(tree, positions, assembly.flexion_interval().lower.t, assembly.flexion_interval().upper.t,
-                            groups, size, options.keyframes, options.progress);
+    KeyframeOptions keyframes = options.keyframes;
+    keyframes.initial = std::max(keyframes.initial, path.minimum_keyframes);
+    keys = choose_keyframes(tree, path.positions, path.lo, path.hi, groups, size, keyframes, options.progress);
   }
 
   // Geometry: one shared index accessor, one position accessor per panel (its
@@ -325,7 +407,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 
   // Animation: keyframe times, per node rotations, per root translations.
   if (!options.static_t) {
-    const double lo = assembly.flexion_interval().lower.t, width = assembly.flexion_interval().width();
+    const double total = path.seconds_of(path.hi);
     std::vector<std::size_t> sequence;
     for (std::size_t k = 0; k < keys.t.size(); ++k) sequence.push_back(k);
     if (options.ping_pong) {
@@ -333,9 +415,9 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     }
     std::vector<float> times;
     for (std::size_t s = 0; s < sequence.size(); ++s) {
-      const double forward = (keys.t[sequence[s]] - lo) / width * options.seconds;
-      times.push_back(checked(s < keys.t.size() ? forward : 2.0 * options.seconds - forward));
-      keyframe_t.push_back(tinygltf::Value(keys.t[sequence[s]]));
+      const double forward = path.seconds_of(keys.t[sequence[s]]);
+      times.push_back(checked(s < keys.t.size() ? forward : 2.0 * total - forward));
+      keyframe_t.push_back(tinygltf::Value(path.t_of(keys.t[sequence[s]])));
     }
     const int time_view = buffer.add_view(times, 0);
     const int time_accessor = buffer.add_accessor(time_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
@@ -393,11 +475,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfReport* report) {
   const Assembly& assembly = design.assembly;
   const AssemblyMesh mesh = design.merge ? merged_mesh(assembly) : separate_mesh(assembly);
-  auto positions = [&](double t) {
-    Points p = mesh.positions(assembly.evaluate(t));
-    for (Vec3& x : p) x = to_y_up(x);
-    return p;
-  };
+  const MotionPath path = options.cycle ? cycle_path(design, mesh, options) : interval_path(design, mesh, options);
   const double size = assembly.model_size();
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -420,11 +498,12 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   figures.model_size = size;
   tinygltf::Value::Array keyframe_t;
   if (options.morph && !options.static_t) {
-    build_morph(model, buffer, design, mesh, positions, options, figures, keyframe_t);
+    build_morph(model, buffer, design, mesh, path, options, figures, keyframe_t);
   } else {
-    build_nodes(model, buffer, design, mesh, positions, options, figures, keyframe_t);
+    build_nodes(model, buffer, design, mesh, path, options, figures, keyframe_t);
   }
 
+  if (!options.static_t) figures.opening_t = path.t_of(figures.opening_t);
   tinygltf::Value::Object phedra;
   phedra["name"] = tinygltf::Value(assembly.name());
   phedra["kind"] = tinygltf::Value(design.kind);
@@ -437,6 +516,17 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     phedra["t"] = tinygltf::Value(*options.static_t);
   } else {
     phedra["seconds"] = tinygltf::Value(options.seconds);
+    if (options.cycle) {
+      tinygltf::Value::Array passes;
+      for (const PHedron::Pass& pass : assembly.base().configuration_cycle().passes) {
+        tinygltf::Value::Object p;
+        p["from"] = tinygltf::Value(pass.from);
+        p["to"] = tinygltf::Value(pass.to);
+        p["switched_strip"] = tinygltf::Value(static_cast<int>(pass.switched));
+        passes.push_back(tinygltf::Value(p));
+      }
+      phedra["cycle"] = tinygltf::Value(passes);
+    }
     phedra["ping_pong"] = tinygltf::Value(options.ping_pong);
     phedra["keyframe_t"] = tinygltf::Value(keyframe_t);
     phedra["representation"] = tinygltf::Value(std::string(options.morph ? "morph targets" : "nodes"));

@@ -29,7 +29,10 @@ for name in grid-3x3 merged-tube; do
   node "$top/tests/js/compare_three.mjs" "$phedra" "$top/presets/$name.json" "$out/$name-morph.glb" || status=1
   files+=("$out/$name-morph.glb")
 done
-files+=("$out/grid-3x3.gltf" "$out/static.glb")
+# The configuration curve through the flexion limits, both representations.
+"$phedra" generate "$top/presets/default.json" -o "$out/cycle.glb" --cycle --quiet >/dev/null
+"$phedra" generate "$top/presets/anti-parallelogram-tube.json" -o "$out/cycle-morph.gltf" --cycle --morph --quiet >/dev/null
+files+=("$out/grid-3x3.gltf" "$out/static.glb" "$out/cycle.glb" "$out/cycle-morph.gltf")
 node "$top/tests/js/validate_gltf.mjs" "${files[@]}" || status=1
 if [ "$status" -eq 0 ]; then echo "$(( ${#files[@]} + ${#folds[@]} )) passed, 0 failed"; else echo "export client checks failed"; fi
 exit "$status"

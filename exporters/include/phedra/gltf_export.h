@@ -19,6 +19,11 @@ struct GltfOptions {
   bool binary = true;                 ///< .glb (true) or .gltf with an embedded buffer
   double seconds = 4.0;               ///< duration of t_lambda -> t_mu
   bool ping_pong = false;             ///< play t_lambda -> t_mu -> t_lambda
+  /// Animate the whole configuration curve through the flexion limits
+  /// (PHedron::configuration_cycle: t* -> t_mu -> ... -> t*, strips switching
+  /// branch at the limits); single P-hedra and tubes. Each pass takes `seconds`
+  /// times its share of the interval.
+  bool cycle = false;
   std::optional<double> static_t;     ///< a static export at this t (no animation)
   /// Morph targets instead of nodes: one mesh, one target per keyframe, sparse
   /// one-hot weights; keyframes bound the chord error of the vertices (at most
