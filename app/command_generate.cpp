@@ -112,7 +112,7 @@ void add_generate_command(CLI::App& app, Context& context) {
                 "glTF: morph targets (one per keyframe, sparse one-hot weights, at most 250) instead of a node per panel");
   sub->add_flag("--cycle", o->cycle,
                 "glTF: animate the whole configuration curve through the flexion limits (strips switch to their mirror "
-                "branch at each limit, see phedra info); single P-hedra and tubes");
+                "branch at each limit, see phedra info)");
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {

@@ -79,8 +79,8 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
                    {"closure", at_star.closure.value},
                    {"reproduction", at_star.reproduction},
                    {"at_t_star", at_star.to_json()}};
+  j["configuration_curve"] = curve_json(p.configuration_cycle());
   if (a.member_count() == 1) {
-    j["configuration_curve"] = curve_json(p.configuration_cycle());
     j["rows"] = g.rows();
     j["columns"] = g.columns();
     j["edges"] = g.edge_count();
@@ -116,8 +116,8 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << "flexion interval:  [" << format_number(f.lower.t) << ", " << format_number(f.upper.t) << "]\n"
       << "  t_lambda limit:  " << limit_cause(f.lower.strip) << '\n'
       << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n';
-  if (a.member_count() == 1) {
-    // The whole curve through the limits (paper, Remark 3).
+  {
+    // The whole curve through the limits (paper, Remark 3); an array's members follow its base.
     const PHedron::ConfigurationCycle c = p.configuration_cycle();
     out << "configuration curve: " << c.passes.size() << " passes, "
         << (c.closed ? "closed (back at t* on the input branch)" : "open: " + c.stop) << '\n';

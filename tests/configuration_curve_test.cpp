@@ -163,14 +163,44 @@ TEST_CASE("glTF --cycle: the whole curve, pass boundaries as keyframes, hinges w
             Approx(travelled / d.assembly.flexion_interval().width() * options.seconds).epsilon(1e-6));
     }
   }
-  // Arrays and non-glTF outputs refuse --cycle (exit 2, named option).
-  std::ostringstream out, err;
-  CHECK(cli::run({"generate", std::string(PHEDRA_PRESETS_DIR) + "/grid-3x3.json", "-o", "/tmp/never.glb", "--cycle"},
-                 out, err) == 2);
-  CHECK(err.str().find("--cycle") != std::string::npos);
-  CHECK(!std::filesystem::exists("/tmp/never.glb"));
+  // Non-glTF outputs refuse --cycle (exit 2, named option), leaving nothing.
   std::ostringstream out2, err2;
   CHECK(cli::run({"generate", std::string(PHEDRA_PRESETS_DIR) + "/default.json", "-o", "/tmp/never.fold", "--cycle"},
                  out2, err2) == 2);
   CHECK(err2.str().find("glTF") != std::string::npos);
+  CHECK(err2.str().find("--cycle") != std::string::npos);
+  CHECK(!std::filesystem::exists("/tmp/never.fold"));
+}
+
+TEST_CASE("arrays follow the base through the limits: closed tubes and shared vertices on every pass", "[curve]") {
+  for (const char* name : {"grid-3x3", "row-of-cells", "edge-sharing-pair", "anti-parallelogram-edge-pair",
+                           "merged-tube"}) {
+    CAPTURE(name);
+    const Design d = load_design(std::string(PHEDRA_PRESETS_DIR) + "/" + name + ".json");
+    const Assembly& a = d.assembly;
+    const PHedron::ConfigurationCycle c = a.base().configuration_cycle();
+    CHECK((c.closed || !c.stop.empty()));
+    const double tolerance = 1e-9 * a.model_size();
+    AssemblyConfiguration on_input, on_pass;
+    for (const PHedron::Pass& pass : c.passes) {
+      for (double f : {0.25, 0.75}) {
+        const double t = pass.from + f * (pass.to - pass.from);
+        a.evaluate(t, pass.flipped, on_pass);
+        for (std::size_t m = 0; m < a.member_count(); ++m) {
+          CAPTURE(m, t);
+          CHECK(on_pass.closure[m].value <= tolerance);
+        }
+        for (const auto& group : a.shared_vertices()) {
+          const Vec3& first = on_pass.members[group.front().member][group.front().vertex];
+          for (const VertexRef& r : group) CHECK((on_pass.members[r.member][r.vertex] - first).norm() <= tolerance);
+        }
+        // The members' shapes are kept: every member's edges as at t*.
+        for (std::size_t m = 0; m < a.member_count(); ++m) {
+          const std::vector<Segment> edges = a.topology(m).edges();
+          const std::vector<double> lengths = segment_lengths(edges, a.reference(m));
+          CHECK(length_deviation(edges, lengths, on_pass.members[m]).value <= tolerance);
+        }
+      }
+    }
+  }
 }

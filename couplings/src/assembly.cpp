@@ -82,9 +82,9 @@ void Assembly::write_user(std::size_t m, const NetState& state, Points& out) con
   }
 }
 
-void Assembly::evaluate_states(double t, std::vector<NetState>& states) const {
+void Assembly::evaluate_states(double t, std::vector<NetState>& states, const std::vector<bool>* flipped) const {
   states.resize(members_.size());
-  base_.evaluate_canonical(t, states[0].axial, states[0].general, states[0].apexes);
+  base_.evaluate_canonical(t, states[0].axial, states[0].general, states[0].apexes, flipped);
   for (std::size_t m = 1; m < members_.size(); ++m) {
     const Seed& seed = members_[m].seeded->seed();
     const NetState& parent = states[seed.parent];
@@ -92,9 +92,19 @@ void Assembly::evaluate_states(double t, std::vector<NetState>& states) const {
   }
 }
 
-void Assembly::evaluate(double t, AssemblyConfiguration& out) const {
+void Assembly::evaluate(double t, AssemblyConfiguration& out) const { evaluate_on(t, nullptr, out); }
+
+void Assembly::evaluate(double t, const std::vector<bool>& flipped, AssemblyConfiguration& out) const {
+  if (flipped.size() != base_.topology().rows()) {
+    throw Error(ExitCode::internal, "evaluate: branch of " + std::to_string(flipped.size()) + " strips, expected " +
+                                        std::to_string(base_.topology().rows()));
+  }
+  evaluate_on(t, &flipped, out);
+}
+
+void Assembly::evaluate_on(double t, const std::vector<bool>* flipped, AssemblyConfiguration& out) const {
   std::vector<NetState>& states = out.states;
-  evaluate_states(t, states);
+  evaluate_states(t, states, flipped);
   out.t = t;
   out.members.resize(members_.size());
   out.closure.assign(members_.size(), ClosureGap{});

@@ -149,10 +149,6 @@ MotionPath interval_path(const Design& design, const AssemblyMesh& mesh, const G
 /// on its branch; each pass takes `seconds` times its share of the interval.
 MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
   const Assembly& a = design.assembly;
-  if (a.member_count() != 1) {
-    throw InvalidInputError("--cycle", "the configuration curve is traced for single P-hedra and tubes; the members "
-                                       "of an array follow the base on its input branch only");
-  }
   if (options.static_t) throw InvalidInputError("--cycle", "a static export (--at) has no cycle");
   auto passes = std::make_shared<std::vector<PHedron::Pass>>(a.base().configuration_cycle().passes);
   const double width = a.flexion_interval().width();
@@ -172,15 +168,11 @@ MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const Gltf
   path.hi = static_cast<double>(passes->size());
   path.rest = 0.0;
   path.minimum_keyframes = 2 * passes->size() + 1;
-  const PHedron& p = a.base();
-  path.positions = [locate, &p, &mesh](double u) {
+  path.positions = [locate, &a, &mesh](double u) {
     double t;
     const PHedron::Pass& pass = locate(u, t);
     AssemblyConfiguration c;
-    c.t = t;
-    c.members.assign(1, Points(p.vertex_count()));
-    c.closure.assign(1, ClosureGap{});
-    p.evaluate(t, pass.flipped, c.members[0], &c.closure[0]);
+    a.evaluate(t, pass.flipped, c);
     return y_up(mesh.positions(c));
   };
   path.t_of = [locate](double u) {

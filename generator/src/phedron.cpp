@@ -160,7 +160,7 @@ void PHedron::advance_column(std::size_t i, double t, const double* s, const Vec
 }
 
 template <class RowSink>
-void PHedron::run_rows(double t, RowSink&& sink) const {
+void PHedron::run_rows(double t, const std::vector<bool>* flipped, RowSink&& sink) const {
   const LinkageStart start = start_at(t);
   const std::size_t n = motion_.columns();
   std::vector<double> s(n + 1);
@@ -171,7 +171,7 @@ void PHedron::run_rows(double t, RowSink&& sink) const {
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
     std::swap(previous_a, current_a);
     std::swap(previous_g, current_g);
-    advance_column(i, t, s.data(), previous_a[0], current_a[0]);
+    advance_column(i, t, s.data(), previous_a[0], current_a[0], flipped);
     motion_.fill_row(i, s.data(), current_a.data());
     motion_.advance_general_row(i, previous_a.data(), current_a.data(), previous_g.data(), current_g.data());
     sink(i, s.data(), current_a.data(), current_g.data());
@@ -290,12 +290,13 @@ Points PHedron::evaluate(double t) const {
   return out;
 }
 
-void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes) const {
+void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes,
+                                 const std::vector<bool>* flipped) const {
   const std::size_t n = motion_.columns();
   axial.resize(motion_.rows() * n);
   general.resize(motion_.rows() * n);
   apexes.resize(n + 1);
-  run_rows(t, [&](std::size_t i, const double* s, const Vec3* a, const Vec3* g) {
+  run_rows(t, flipped, [&](std::size_t i, const double* s, const Vec3* a, const Vec3* g) {
     std::copy(a, a + n, axial.begin() + i * n);
     std::copy(g, g + n, general.begin() + i * n);
     if (i == 0) std::copy(s, s + n + 1, apexes.begin());

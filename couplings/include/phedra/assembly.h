@@ -63,6 +63,8 @@ class Assembly {
 
   /// Positions of all members at t. Throws OutOfIntervalError outside the interval.
   void evaluate(double t, AssemblyConfiguration& out) const;
+  /// On a branch of the base (PHedron::evaluate): the members follow it.
+  void evaluate(double t, const std::vector<bool>& flipped, AssemblyConfiguration& out) const;
   AssemblyConfiguration evaluate(double t) const;
 
   /// Groups of vertices of different members that coincide at t* (within 1e-9 of
@@ -77,7 +79,8 @@ class Assembly {
     Points reference;
     std::optional<SeededMember> seeded;  ///< empty for the base
   };
-  void evaluate_states(double t, std::vector<NetState>& states) const;
+  void evaluate_states(double t, std::vector<NetState>& states, const std::vector<bool>* flipped = nullptr) const;
+  void evaluate_on(double t, const std::vector<bool>* flipped, AssemblyConfiguration& out) const;
   void write_user(std::size_t m, const NetState& state, Points& out) const;
 
   PHedron base_;

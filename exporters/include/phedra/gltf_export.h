@@ -21,8 +21,8 @@ struct GltfOptions {
   bool ping_pong = false;             ///< play t_lambda -> t_mu -> t_lambda
   /// Animate the whole configuration curve through the flexion limits
   /// (PHedron::configuration_cycle: t* -> t_mu -> ... -> t*, strips switching
-  /// branch at the limits); single P-hedra and tubes. Each pass takes `seconds`
-  /// times its share of the interval.
+  /// branch at the limits; an array's members follow its base). Each pass takes
+  /// `seconds` times its share of the interval.
   bool cycle = false;
   std::optional<double> static_t;     ///< a static export at this t (no animation)
   /// Morph targets instead of nodes: one mesh, one target per keyframe, sparse

@@ -95,7 +95,9 @@ class PHedron {
   /// The axial and the general net at t in the canonical frame (rows x n, row-major,
   /// no boundary columns) and the apex heights s_0..s_n (canonical): what the
   /// members of an assembly are seeded on.
-  void evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes) const;
+  /// `flipped` (optional): the branch, as for evaluate.
+  void evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes,
+                          const std::vector<bool>* flipped = nullptr) const;
 
   /// Heights <S_j(t), axis> (user frame) of the apexes S_0..S_n at t.
   std::vector<double> apex_heights(double t) const;
@@ -126,7 +128,7 @@ class PHedron {
                       const std::vector<bool>* flipped = nullptr) const;
   /// Runs the motion at t row by row: sink(i, apexes, axial_row, general_row), canonical frame.
   template <class RowSink>
-  void run_rows(double t, RowSink&& sink) const;
+  void run_rows(double t, const std::vector<bool>* flipped, RowSink&& sink) const;
 
   ControlPolylines input_;
   CanonicalFrame frame_;
