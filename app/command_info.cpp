@@ -143,7 +143,8 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
 void add_info_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<InfoOptions>();
   CLI::App* sub = app.add_subcommand("info", "Show what the preset builds, t*, the motion case, the flexion interval "
-                                              "with its limits, the mesh counts and the figures at t*");
+                                              "with its limits, the configuration curve through them (strips switching "
+                                              "branch), the mesh counts and the figures at t*");
   add_preset_argument(sub, options->preset);
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
