@@ -7,6 +7,7 @@
 #include "phedra/gltf_export.h"
 #include "phedra/mesh_export.h"
 #include "phedra/number_format.h"
+#include "phedra/self_intersection.h"
 #include "progress.h"
 #include "support.h"
 
@@ -28,9 +29,35 @@ struct GenerateOptions {
   bool quiet = false;
   bool morph = false;
   bool cycle = false;
+  bool no_self_intersection = false;
+  std::size_t intersection_samples = SelfIntersectionOptions{}.samples_per_side;
 };
 
+/// --no-self-intersection: the intersection-free sub-interval around t*.
+std::optional<std::pair<double, double>> free_range(Context& context, const Design& design, const GenerateOptions& o) {
+  if (!o.no_self_intersection) return std::nullopt;
+  SelfIntersectionOptions options;
+  options.samples_per_side = o.intersection_samples;
+  const SelfIntersectionReport report = find_self_intersections(design, options);
+  const std::pair<double, double> range = intersection_free_interval(report);
+  if (!(range.second > range.first)) {
+    throw InvalidInputError("--no-self-intersection", "the intersection-free interval is the single configuration t = " +
+                                                          format_number(range.first));
+  }
+  context.out << "intersection-free interval [" << format_number(range.first) << ", " << format_number(range.second)
+              << "] of the flexion interval [" << format_number(report.t_lambda) << ", "
+              << format_number(report.t_mu) << "]\n";
+  return range;
+}
+
 enum class Format { glb, gltf, json, fold, obj, ply };
+
+/// A static t (--at) must lie in the intersection-free interval when one is asked for.
+void check_in_range(const std::optional<double>& t, const std::optional<std::pair<double, double>>& range) {
+  if (!t || !range || (*t >= range->first && *t <= range->second)) return;
+  throw InvalidInputError("--at", "t = " + format_number(*t) + " is outside the intersection-free interval [" +
+                                      format_number(range->first) + ", " + format_number(range->second) + "]");
+}
 
 Format format_of(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -43,8 +70,10 @@ Format format_of(const std::string& path) {
   throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf, .fold, .obj, .ply or .json)");
 }
 
-void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary) {
+void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary,
+                const std::optional<std::pair<double, double>>& range) {
   GltfOptions options;
+  options.range = range;
   options.binary = binary;
   options.seconds = o.seconds;
   options.ping_pong = o.ping_pong;
@@ -60,6 +89,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
     const FlexionInterval& f = design.assembly.flexion_interval();
     throw OutOfIntervalError(*o.static_t, f.lower.t, f.upper.t);
   }
+  check_in_range(o.static_t, range);
   GltfReport report;
   const std::string bytes = gltf_bytes(design, options, &report);
   progress.finish();
@@ -77,9 +107,9 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
                 << format_number(o.seconds) << " s a full traversal of the interval" << (o.ping_pong ? ", and back" : "")
                 << '\n';
   } else {
-    context.out << ", " << report.keyframes << " keyframes over ["
-                << format_number(design.assembly.flexion_interval().lower.t) << ", "
-                << format_number(design.assembly.flexion_interval().upper.t) << "] in " << format_number(o.seconds)
+    const FlexionInterval& f = design.assembly.flexion_interval();
+    context.out << ", " << report.keyframes << " keyframes over [" << format_number(range ? range->first : f.lower.t)
+                << ", " << format_number(range ? range->second : f.upper.t) << "] in " << format_number(o.seconds)
                 << " s" << (o.ping_pong ? " and back" : "") << '\n';
   }
   context.out
@@ -113,26 +143,44 @@ void add_generate_command(CLI::App& app, Context& context) {
   sub->add_flag("--cycle", o->cycle,
                 "glTF: animate the whole configuration curve through the flexion limits (strips switch to their mirror "
                 "branch at each limit, see phedra info)");
+  sub->add_flag("--no-self-intersection", o->no_self_intersection,
+                "Restrict the motion to the intersection-free sub-interval around t* (phedra intersections): the "
+                "animation, --count and the frames span it, and a --t, --fraction or --at outside it is refused; "
+                "refused when the configuration at t* intersects itself");
+  sub->add_option("--intersection-samples", o->intersection_samples,
+                  "With --no-self-intersection: samples from t* to each limit for the search")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {
     const Format format = format_of(o->output);
     const Design design = load(context, o->preset);
+    if (o->cycle && format != Format::glb && format != Format::gltf) {
+      throw InvalidInputError("--cycle", "the configuration curve is exported as glTF (.glb, .gltf) only");
+    }
+    if (o->cycle && o->no_self_intersection) {
+      throw InvalidInputError("--no-self-intersection", "--cycle runs through the flexion limits; it cannot be "
+                                                        "restricted to the intersection-free interval");
+    }
+    const std::optional<std::pair<double, double>> range = free_range(context, design, *o);
     if (format == Format::glb || format == Format::gltf) {
-      write_gltf(context, design, *o, format == Format::glb);
+      write_gltf(context, design, *o, format == Format::glb, range);
       return;
     }
-    if (o->cycle) throw InvalidInputError("--cycle", "the configuration curve is exported as glTF (.glb, .gltf) only");
     if (format == Format::obj || format == Format::ply) {
       const double t = o->static_t.value_or(design.assembly.t_star());
       const FlexionInterval& f = design.assembly.flexion_interval();
       if (!f.contains(t)) throw OutOfIntervalError(t, f.lower.t, f.upper.t);
+      check_in_range(t, range);
       emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply"), o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\" at t = "
                   << format_number(t) << '\n';
       return;
     }
-    const std::vector<double> ts = o->parameters.values(sub, design.assembly);
+    const std::vector<double> ts = range ? o->parameters.values(sub, design.assembly, *range, "--no-self-intersection",
+                                                                "intersection-free")
+                                         : o->parameters.values(sub, design.assembly);
     if (format == Format::fold) {
       emit(fold_json(design, ts), o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "

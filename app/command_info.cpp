@@ -5,8 +5,10 @@
 #include "phedra/assembly_check.h"
 #include "phedra/control_polylines.h"
 #include "phedra/number_format.h"
+#include "phedra/self_intersection.h"
 #include "support.h"
 
+#include <algorithm>
 #include <memory>
 #include <ostream>
 
@@ -89,6 +91,35 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
   return j;
 }
 
+/// Invalid panels and a collision at t*: what a designer must know before folding.
+struct PanelFindings {
+  std::vector<InvalidPanel> invalid;
+  std::optional<Collision> collision;
+  std::size_t count(PanelShape shape) const {
+    return static_cast<std::size_t>(
+        std::count_if(invalid.begin(), invalid.end(), [shape](const InvalidPanel& p) { return p.shape == shape; }));
+  }
+};
+
+nlohmann::json panels_json(const PanelFindings& f, bool several) {
+  return {{"bow_tie", f.count(PanelShape::bow_tie)},
+          {"degenerate", f.count(PanelShape::degenerate)},
+          {"self_intersection_at_t_star", f.collision ? nlohmann::json(describe(*f.collision, several)) : nullptr}};
+}
+
+void print_panels(std::ostream& out, const PanelFindings& f, bool several) {
+  out << "panels at t*:      ";
+  if (f.invalid.empty()) {
+    out << "all valid";
+  } else {
+    out << f.count(PanelShape::bow_tie) << " bow-tie, " << f.count(PanelShape::degenerate)
+        << " degenerate (cannot be cut as one flat plate; see phedra intersections)";
+  }
+  out << "; self-intersection: "
+      << (f.collision ? describe(*f.collision, several) : std::string("none at t* (phedra intersections sweeps the interval)"))
+      << '\n';
+}
+
 void print_info(std::ostream& out, const Design& design, const MotionDocument& mesh, const AssemblyCheckReport& at_star) {
   const Assembly& a = design.assembly;
   const PHedron& p = a.base();
@@ -151,10 +182,15 @@ void add_info_command(CLI::App& app, Context& context) {
     const Design design = load(context, options->preset);
     const MotionDocument mesh = motion_document(design);
     const AssemblyCheckReport at_star = check_assembly_at_t_star(design.assembly);
+    const PanelFindings panels{invalid_panels(design), self_intersection_at_t_star(design)};
+    const bool several = design.assembly.member_count() > 1;
     if (options->json) {
-      context.out << info_json(design, mesh, at_star).dump(2) << '\n';
+      nlohmann::json j = info_json(design, mesh, at_star);
+      j["panels"] = panels_json(panels, several);
+      context.out << j.dump(2) << '\n';
     } else {
       print_info(context.out, design, mesh, at_star);
+      print_panels(context.out, panels, several);
     }
   });
 }

@@ -3,6 +3,7 @@
 #include "phedra/assembly.h"
 #include "phedra/errors.h"
 #include "phedra/interval_check.h"
+#include "phedra/number_format.h"
 
 namespace phedra::cli {
 
@@ -24,6 +25,12 @@ void MotionParameters::add_options(CLI::App* command, std::size_t default_count)
 }
 
 std::vector<double> MotionParameters::values(const CLI::App* command, const Assembly& a) const {
+  return values(command, a, {a.flexion_interval().lower.t, a.flexion_interval().upper.t}, "", "");
+}
+
+std::vector<double> MotionParameters::values(const CLI::App* command, const Assembly& a,
+                                             std::pair<double, double> range, const std::string& option,
+                                             const std::string& what) const {
   std::vector<double> ts;
   std::size_t next_t = 0, next_f = 0;
   for (const CLI::Option* option : command->parse_order()) {
@@ -33,9 +40,17 @@ std::vector<double> MotionParameters::values(const CLI::App* command, const Asse
   std::size_t count = count_;
   if (ts.empty() && count == 0) count = default_count_;
   if (count) {
-    for (double t : interval_samples(a.flexion_interval().lower.t, a.flexion_interval().upper.t, count)) ts.push_back(t);
+    for (double t : interval_samples(range.first, range.second, count)) ts.push_back(t);
   }
   if (ts.empty()) throw InvalidInputError("", "give at least one --t, --fraction or --count");
+  if (!option.empty()) {
+    for (double t : ts) {
+      if (t < range.first || t > range.second) {
+        throw InvalidInputError(option, "t = " + format_number(t) + " is outside the " + what + " interval [" +
+                                         format_number(range.first) + ", " + format_number(range.second) + "]");
+      }
+    }
+  }
   return ts;
 }
 

@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 
 #include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace phedra {
@@ -20,6 +22,12 @@ class MotionParameters {
   /// The t values: --t and --fraction in the order given, then --count evenly
   /// spread (limits included); `default_count` of them when nothing was given.
   std::vector<double> values(const CLI::App* command, const Assembly& assembly) const;
+  /// The same within [range.first, range.second] (a sub-interval, e.g. the
+  /// intersection-free one, `what` says which, `option` asked for it): --count
+  /// spreads over it, and a --t or --fraction outside it is an InvalidInputError
+  /// naming `option`.
+  std::vector<double> values(const CLI::App* command, const Assembly& assembly, std::pair<double, double> range,
+                             const std::string& option, const std::string& what) const;
 
  private:
   std::vector<double> t_, fraction_;

@@ -18,9 +18,12 @@ AssemblyMesh separate_mesh(const Assembly& assembly) {
     const std::size_t offset = mesh.vertices.size();
     const GridTopology& g = assembly.topology(m);
     for (std::size_t v = 0; v < g.vertex_count(); ++v) mesh.vertices.push_back({m, v});
-    for (const Quad& q : g.faces()) {
+    const std::vector<Quad> faces = g.faces();
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      const Quad& q = faces[k];
       mesh.faces.push_back({q[0] + offset, q[1] + offset, q[2] + offset, q[3] + offset});
       mesh.face_member.push_back(m);
+      mesh.face_local.push_back(k);
     }
   }
   return mesh;
@@ -40,16 +43,19 @@ AssemblyMesh merged_mesh(const Assembly& assembly) {
   struct Candidate {
     Quad quad;
     std::size_t member;
+    std::size_t local;
   };
   std::vector<Candidate> candidates;
   std::map<std::array<std::size_t, 4>, std::size_t> count;
   for (std::size_t m = 0; m < assembly.member_count(); ++m) {
-    for (const Quad& q : assembly.topology(m).faces()) {
+    const std::vector<Quad> faces = assembly.topology(m).faces();
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      const Quad& q = faces[k];
       Quad w{weld[offset[m] + q[0]], weld[offset[m] + q[1]], weld[offset[m] + q[2]], weld[offset[m] + q[3]]};
       std::array<std::size_t, 4> key = w;
       std::sort(key.begin(), key.end());
       ++count[key];
-      candidates.push_back({w, m});
+      candidates.push_back({w, m, k});
     }
   }
   AssemblyMesh mesh;
@@ -71,6 +77,7 @@ AssemblyMesh merged_mesh(const Assembly& assembly) {
     }
     mesh.faces.push_back({vertex_of(c.quad[0]), vertex_of(c.quad[1]), vertex_of(c.quad[2]), vertex_of(c.quad[3])});
     mesh.face_member.push_back(c.member);
+    mesh.face_local.push_back(c.local);
   }
   return mesh;
 }

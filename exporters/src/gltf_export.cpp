@@ -134,10 +134,12 @@ Points y_up(Points p) {
 /// t over the flexion interval: `seconds` from t_lambda to t_mu.
 MotionPath interval_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
   const Assembly& a = design.assembly;
-  const double lo = a.flexion_interval().lower.t, width = a.flexion_interval().width();
+  const double lo = options.range ? options.range->first : a.flexion_interval().lower.t;
+  const double hi = options.range ? options.range->second : a.flexion_interval().upper.t;
+  const double width = hi > lo ? hi - lo : 1.0;
   MotionPath path;
   path.lo = lo;
-  path.hi = a.flexion_interval().upper.t;
+  path.hi = hi;
   path.rest = a.t_star();
   path.positions = [&a, &mesh](double t) { return y_up(mesh.positions(a.evaluate(t))); };
   path.t_of = [](double t) { return t; };
@@ -150,6 +152,10 @@ MotionPath interval_path(const Design& design, const AssemblyMesh& mesh, const G
 MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
   const Assembly& a = design.assembly;
   if (options.static_t) throw InvalidInputError("--cycle", "a static export (--at) has no cycle");
+  if (options.range) {
+    throw InvalidInputError("--cycle", "the configuration curve runs through the flexion limits; it cannot be "
+                                       "restricted to a sub-interval (--no-self-intersection)");
+  }
   auto passes = std::make_shared<std::vector<PHedron::Pass>>(a.base().configuration_cycle().passes);
   const double width = a.flexion_interval().width();
   auto start_seconds = std::make_shared<std::vector<double>>(1, 0.0);
@@ -431,7 +437,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     const int translation_view = buffer.add_view(translations, 0);
     tinygltf::Animation animation;
     animation.name = "fold";
-    auto add_channel = [&](std::size_t node, const char* path, int output) {
+    auto add_channel = [&](std::size_t node, const char* target, int output) {
       tinygltf::AnimationSampler sampler;
       sampler.input = time_accessor;
       sampler.output = output;
@@ -501,6 +507,10 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   phedra["kind"] = tinygltf::Value(design.kind);
   phedra["t_lambda"] = tinygltf::Value(assembly.flexion_interval().lower.t);
   phedra["t_mu"] = tinygltf::Value(assembly.flexion_interval().upper.t);
+  if (options.range && !options.static_t) {
+    phedra["animated_interval"] =
+        tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(options.range->first), tinygltf::Value(options.range->second)});
+  }
   phedra["t_star"] = tinygltf::Value(assembly.t_star());
   phedra["model_size"] = tinygltf::Value(size);
   phedra["up"] = tinygltf::Value(std::string("glTF (x, y, z) = preset (x, z, -y)"));

@@ -11,6 +11,7 @@ struct AssemblyMesh {
   std::vector<VertexRef> vertices;        ///< each mesh vertex: a representative member vertex
   std::vector<Quad> faces;                ///< indices into vertices
   std::vector<std::size_t> face_member;   ///< the member each face comes from
+  std::vector<std::size_t> face_local;    ///< its index in that member's topology (row * face_columns + column)
   std::size_t deleted_faces = 0;          ///< merged: faces removed (both copies of shared strips)
 
   /// Positions of the mesh's vertices in a configuration of the assembly.

@@ -25,6 +25,10 @@ struct GltfOptions {
   /// `seconds` times its share of the interval.
   bool cycle = false;
   std::optional<double> static_t;     ///< a static export at this t (no animation)
+  /// Animate [range.first, range.second] (a sub-interval of the flexion interval,
+  /// e.g. the intersection-free one) instead of the whole interval; `seconds`
+  /// is then its duration. Not with `cycle`.
+  std::optional<std::pair<double, double>> range;
   /// Morph targets instead of nodes: one mesh, one target per keyframe, sparse
   /// one-hot weights; keyframes bound the chord error of the vertices (at most
   /// `max_morph_targets`); they start from `keyframes.initial` and never exceed

@@ -1,0 +1,94 @@
+#pragma once
+// Self-intersection of a design over its flexion interval (issue 7, item 3).
+// Panels are the faces of the merged mesh (coupled members welded, shared face
+// strips removed). Two kinds of collision:
+//  - panels that cut into each other (non-adjacent panels, and panels that meet
+//    at a corner), triangle by triangle (triangle_overlap.h) with a uniform grid
+//    as broad phase;
+//  - a hinge folding through: the two panels on an edge close onto each other
+//    (dihedral opening 0 or 360 degrees), tracked continuously from t*.
+// Touching is not intersecting: contact without penetration is allowed, so a
+// hinge that folds flat onto itself ends the free interval exactly there, unless
+// that happens at the flexion limit itself (a tube that folds flat at the end of
+// its motion): `lower_contact` / `upper_contact` say so.
+// The sweep walks from t* to each flexion limit over samples that crowd towards
+// the limit (the motion is fastest there), and bisects the first collision to
+// 1e-12 of the interval's width. A collision that starts and ends between two
+// samples can be missed: more samples, finer resolution.
+
+#include "phedra/assembly_mesh.h"
+#include "phedra/design.h"
+#include "phedra/panel_shape.h"
+
+#include <nlohmann/json.hpp>
+
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+struct SelfIntersectionOptions {
+  /// Samples from t* to each limit (limits included); they crowd quadratically towards the limit.
+  std::size_t samples_per_side = 200;
+  /// Penetration (and hinge closing angle) that counts, relative to the model size.
+  double relative_tolerance = 1e-9;
+};
+
+/// One panel of the merged mesh, named as the user knows it.
+struct PanelId {
+  std::size_t face = 0;    ///< index in the merged mesh (the order of exports)
+  std::size_t member = 0;  ///< the member it belongs to
+  std::size_t row = 0;     ///< its strip (profile i to i + 1)
+  std::size_t column = 0;  ///< its column in the member's grid
+};
+
+/// What ends an intersection-free stretch.
+struct Collision {
+  enum class Kind { panels, hinge };
+  Kind kind = Kind::panels;
+  PanelId a, b;
+  double t = 0.0;  ///< where it starts (the end of the free interval)
+};
+
+struct InvalidPanel {
+  PanelId panel;
+  PanelShape shape = PanelShape::degenerate;
+};
+
+struct SelfIntersectionReport {
+  std::string name;
+  double t_star = 0.0;
+  double t_lambda = 0.0, t_mu = 0.0;   ///< the flexion interval
+  double free_lower = 0.0, free_upper = 0.0;  ///< the intersection-free sub-interval around t*
+  std::optional<Collision> at_t_star;  ///< the input configuration itself intersects
+  std::optional<Collision> lower, upper;  ///< what ends the free interval (empty: the flexion limit)
+  std::optional<Collision> lower_contact, upper_contact;  ///< panels that touch at the flexion limit, no earlier
+  std::vector<InvalidPanel> invalid_panels;  ///< bow-tie and degenerate panels (left out of the test)
+  std::size_t members = 1, panels = 0, hinges = 0, samples = 0;
+  double model_size = 0.0;
+
+  /// No collision anywhere in the flexion interval (invalid panels aside).
+  bool intersection_free() const { return !at_t_star && !lower && !upper; }
+  nlohmann::json to_json() const;
+};
+
+std::ostream& operator<<(std::ostream& out, const SelfIntersectionReport& report);
+
+/// The shape of every panel at t* (the motion keeps it): the invalid ones.
+std::vector<InvalidPanel> invalid_panels(const Design& design);
+
+SelfIntersectionReport find_self_intersections(const Design& design, const SelfIntersectionOptions& options = {});
+
+/// The configuration at t* alone (one snapshot, no sweep): its first collision.
+std::optional<Collision> self_intersection_at_t_star(const Design& design, const SelfIntersectionOptions& options = {});
+
+/// "panel 3 (strip 0, column 3) and panel 9 (strip 1, column 2) penetrate", naming members when there are several.
+std::string describe(const Collision& collision, bool several_members);
+
+/// The intersection-free sub-interval, or InvalidInputError("--no-self-intersection")
+/// when the configuration at t* itself intersects.
+std::pair<double, double> intersection_free_interval(const SelfIntersectionReport& report);
+
+}  // namespace phedra

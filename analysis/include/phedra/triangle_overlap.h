@@ -1,0 +1,27 @@
+#pragma once
+// How deeply two triangles cut into each other. Zero-thickness panels either
+// cross (each has points strictly on both sides of the other's plane, along a
+// common segment) or merely touch (at a point, along an edge lying on the other,
+// or flat on each other when coplanar). The depth of a crossing is the smallest
+// of: the length of the common segment, and how far each triangle reaches to
+// the less-reached side of the other's plane. It is 0 for every kind of contact
+// and negative when the triangles are apart.
+
+#include "phedra/vector_types.h"
+
+#include <array>
+
+namespace phedra {
+
+using Triangle = std::array<Vec3, 3>;
+
+/// The depth above (a length): > 0 crossing, 0 touching (or coplanar, or a
+/// triangle without area), < 0 apart.
+double triangle_penetration(const Triangle& p, const Triangle& q);
+
+/// triangle_penetration(p, q) > tolerance.
+inline bool triangles_penetrate(const Triangle& p, const Triangle& q, double tolerance) {
+  return triangle_penetration(p, q) > tolerance;
+}
+
+}  // namespace phedra

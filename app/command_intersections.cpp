@@ -1,0 +1,48 @@
+// phedra intersections PRESET [--samples N] [--json]
+
+#include "commands.h"
+#include "phedra/errors.h"
+#include "phedra/self_intersection.h"
+#include "support.h"
+
+#include <memory>
+#include <ostream>
+
+namespace phedra::cli {
+namespace {
+
+struct IntersectionsOptions {
+  std::string preset;
+  SelfIntersectionOptions sweep;
+  bool json = false;
+};
+
+}  // namespace
+
+void add_intersections_command(CLI::App& app, Context& context) {
+  auto o = std::make_shared<IntersectionsOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "intersections",
+      "Find where the design intersects itself over its flexion interval: panels that penetrate each other and "
+      "hinges that fold shut; print the intersection-free sub-interval around t* and the panels that end it, and "
+      "the invalid (bow-tie, degenerate) panels; exit 1 when the configuration at t* itself intersects");
+  add_preset_argument(sub, o->preset);
+  sub->add_option("--samples", o->sweep.samples_per_side,
+                  "Samples from t* to each flexion limit (crowding towards the limit); a collision is then "
+                  "bisected to 1e-12 of the interval")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  sub->add_flag("--json", o->json, "Print JSON instead of text");
+  sub->callback([o, &context] {
+    const Design design = load(context, o->preset);
+    const SelfIntersectionReport report = find_self_intersections(design, o->sweep);
+    if (o->json) {
+      context.out << report.to_json().dump(2) << '\n';
+    } else {
+      context.out << report;
+    }
+    context.exit_code = report.at_t_star ? static_cast<int>(ExitCode::check_failed) : 0;
+  });
+}
+
+}  // namespace phedra::cli
