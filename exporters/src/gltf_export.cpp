@@ -446,7 +446,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
       tinygltf::AnimationChannel channel;
       channel.sampler = static_cast<int>(animation.samplers.size()) - 1;
       channel.target_node = static_cast<int>(node);
-      channel.target_path = path;
+      channel.target_path = target;
       animation.channels.push_back(channel);
     };
     for (std::size_t f = 0; f < tree.panels(); ++f) {
