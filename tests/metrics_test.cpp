@@ -1,7 +1,7 @@
 // Metamaterial figures (issue 7, item 4): enclosed volume, extents, deployment
 // and Poisson's ratios, and phedra metrics.
 
-#include "cli.h"
+#include "support/cli_run.h"
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/tube.h"
 #include "support/random_input.h"
@@ -14,23 +14,14 @@
 #include <sstream>
 
 using namespace phedra;
+using test::phedra_cli;
+using test::Run;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
 namespace {
 
 const std::string presets = PHEDRA_PRESETS_DIR;
-
-struct Run {
-  int code;
-  std::string out, err;
-};
-
-Run phedra_cli(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = cli::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
 
 std::string read(const fs::path& p) {
   std::ifstream in(p);

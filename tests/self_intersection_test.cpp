@@ -2,7 +2,7 @@
 // sweep against a brute-force search on random designs and the shipped presets,
 // and the command line (phedra intersections, generate --no-self-intersection).
 
-#include "cli.h"
+#include "support/cli_run.h"
 #include "phedra/errors.h"
 #include "phedra/self_intersection.h"
 #include "phedra/tube.h"
@@ -18,6 +18,8 @@
 #include <sstream>
 
 using namespace phedra;
+using test::phedra_cli;
+using test::Run;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 
@@ -25,17 +27,6 @@ namespace {
 
 const std::string data = PHEDRA_TEST_DATA_DIR;
 const std::string presets = PHEDRA_PRESETS_DIR;
-
-struct Run {
-  int code;
-  std::string out, err;
-};
-
-Run phedra_cli(const std::vector<std::string>& args) {
-  std::ostringstream out, err;
-  const int code = cli::run(args, out, err);
-  return {code, out.str(), err.str()};
-}
 
 Triangle tri(Vec3 a, Vec3 b, Vec3 c) { return {a, b, c}; }
 
