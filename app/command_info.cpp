@@ -88,6 +88,7 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
     j["edges"] = g.edge_count();
   }
   if (!at_star.warning.empty()) j["warning"] = at_star.warning;
+  if (!p.input().trajectory_source.empty()) j["trajectory_source"] = p.input().trajectory_source;
   return j;
 }
 
@@ -130,6 +131,7 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << "kind:              " << design.kind << '\n'
       << "profiles:          " << g.rows() << " (m = " << g.rows() - 1 << " strips), n = " << p.profile_vertex_count()
       << " vertices each, signs " << signs_to_string(p.input().signs) << '\n';
+  if (!p.input().trajectory_source.empty()) out << "trajectory:        " << p.input().trajectory_source << '\n';
   if (a.member_count() == 1) {
     out << "mesh:              " << g.vertex_count() << " vertices (" << g.rows() << " x " << g.columns()
         << (p.closed() ? " grid, cyclic columns), " : " grid with boundary columns), ") << g.face_count()

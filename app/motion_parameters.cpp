@@ -29,7 +29,7 @@ std::vector<double> MotionParameters::values(const CLI::App* command, const Asse
 }
 
 std::vector<double> MotionParameters::values(const CLI::App* command, const Assembly& a,
-                                             std::pair<double, double> range, const std::string& option,
+                                             std::pair<double, double> range, const std::string& restricting_option,
                                              const std::string& what) const {
   std::vector<double> ts;
   std::size_t next_t = 0, next_f = 0;
@@ -43,10 +43,10 @@ std::vector<double> MotionParameters::values(const CLI::App* command, const Asse
     for (double t : interval_samples(range.first, range.second, count)) ts.push_back(t);
   }
   if (ts.empty()) throw InvalidInputError("", "give at least one --t, --fraction or --count");
-  if (!option.empty()) {
+  if (!restricting_option.empty()) {
     for (double t : ts) {
       if (t < range.first || t > range.second) {
-        throw InvalidInputError(option, "t = " + format_number(t) + " is outside the " + what + " interval [" +
+        throw InvalidInputError(restricting_option, "t = " + format_number(t) + " is outside the " + what + " interval [" +
                                          format_number(range.first) + ", " + format_number(range.second) + "]");
       }
     }

@@ -23,11 +23,11 @@ class MotionParameters {
   /// spread (limits included); `default_count` of them when nothing was given.
   std::vector<double> values(const CLI::App* command, const Assembly& assembly) const;
   /// The same within [range.first, range.second] (a sub-interval, e.g. the
-  /// intersection-free one, `what` says which, `option` asked for it): --count
+  /// intersection-free one, `what` says which, `restricting_option` asked for it): --count
   /// spreads over it, and a --t or --fraction outside it is an InvalidInputError
-  /// naming `option`.
+  /// naming `restricting_option`.
   std::vector<double> values(const CLI::App* command, const Assembly& assembly, std::pair<double, double> range,
-                             const std::string& option, const std::string& what) const;
+                             const std::string& restricting_option, const std::string& what) const;
 
  private:
   std::vector<double> t_, fraction_;

@@ -1,5 +1,8 @@
 #include "phedra/preset.h"
 
+#include "phedra/number_format.h"
+#include "phedra/smooth_trajectory.h"
+
 #include "phedra/errors.h"
 
 #include <cmath>
@@ -111,9 +114,29 @@ ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
     if (!it->is_string()) throw InvalidInputError("name", "expected a string, got " + type_name(*it));
     input.name = it->get<std::string>();
   }
-  input.trajectory = read_points(required(preset, "trajectory"), "trajectory");
-  input.directions = read_points(required(preset, "directions"), "directions");
   if (auto it = preset.find("axis"); it != preset.end()) input.axis = read_vector(*it, "axis");
+  // The curves and rules need a usable axis (validate() checks it is a unit vector).
+  const Vec3 axis = input.axis.norm() > 0.0 ? input.axis : Vec3::UnitZ();
+  const json& trajectory = required(preset, "trajectory");
+  const json& directions = required(preset, "directions");
+  Points tangents;
+  if (trajectory.is_object()) {
+    CurveSampling curve = trajectory_curve(trajectory, axis);
+    input.trajectory = std::move(curve.points);
+    tangents = std::move(curve.tangents);
+    input.trajectory_source = curve.kind + ", " + std::to_string(input.trajectory.size() - 1) +
+                              " segments, largest chord deviation " + format_number(curve.deviation) +
+                              " (tolerance " + format_number(curve.tolerance) + ")";
+    if (directions.is_array()) {
+      throw InvalidInputError("directions", "a smooth trajectory needs a direction rule ({\"rule\": \"normal\"} or "
+                                            "{\"rule\": \"radial\", \"through\": [x, y, z]}): its point count is "
+                                            "not known in advance");
+    }
+  } else {
+    input.trajectory = read_points(trajectory, "trajectory");
+  }
+  input.directions = directions.is_object() ? directions_by_rule(directions, input.trajectory, tangents, axis)
+                                            : read_points(directions, "directions");
   if (keys.require_profile || preset.contains("apex_heights")) {
     input.apex_heights = json_numbers(required(preset, "apex_heights"), "apex_heights");
   }

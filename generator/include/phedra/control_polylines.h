@@ -25,6 +25,9 @@ struct ControlPolylines {
   std::vector<double> apex_heights;
   /// s_1..s_{n-1}: one sign per inner apex.
   std::vector<Sign> signs;
+  /// Where the trajectory came from when it was a smooth curve (docs/presets.md),
+  /// e.g. "helix, 24 segments, largest chord deviation 0.0093 (tolerance 0.01)"; empty for a polyline.
+  std::string trajectory_source;
 
   std::size_t profile_count() const { return trajectory.size(); }          ///< m + 1
   std::size_t profile_vertex_count() const { return apex_heights.size() - 1; }  ///< n
