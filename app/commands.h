@@ -22,6 +22,7 @@ void add_check_command(CLI::App& app, Context& context);
 void add_intersections_command(CLI::App& app, Context& context);
 void add_metrics_command(CLI::App& app, Context& context);
 void add_outlines_command(CLI::App& app, Context& context);
+void add_develop_command(CLI::App& app, Context& context);
 void add_generate_command(CLI::App& app, Context& context);
 void add_view_command(CLI::App& app, Context& context);
 void add_bench_command(CLI::App& app, Context& context);

@@ -1,0 +1,40 @@
+#pragma once
+// The crease pattern of a developed P-hedron with its mountain/valley
+// assignment (issue 7, item 2), as SVG and as FOLD (creasePattern frame,
+// edges_assignment M/V/B, edges_foldAngle). The pattern is the region between the
+// first and the last profile vertex (the boundary columns of a P-hedron collapse
+// onto the apexes in the developed state). Viewed from the side where (x, z)
+// is right-handed (x to the right, z up): a valley folds towards the viewer,
+// a mountain away; FOLD's foldAngle is positive for valleys.
+
+#include "phedra/developed_pattern.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+struct CreasePattern {
+  std::string name;
+  std::vector<Vec2> vertices;            ///< (x, z) of the flat pattern
+  std::vector<Quad> faces;
+  std::vector<Segment> edges;
+  std::vector<char> assignment;          ///< 'M', 'V', 'F' (stays flat), 'B' (boundary)
+  std::vector<double> fold_angle;        ///< degrees at the folded state t (valley > 0)
+  std::vector<double> apex_heights;      ///< for the drawing: the axis and its apexes
+  double t = 0.0;                        ///< the folded state of fold_angle
+  double t_assignment = 0.0;             ///< the state just off the flat one that fixed the assignment
+  std::size_t mountains = 0, valleys = 0;
+};
+
+/// The assignment from the pattern folded to `t_assignment` (just off t*, on a side
+/// that folds) with the strips' fold choices; the fold angles at `t`.
+CreasePattern crease_pattern(const DevelopedPattern& pattern, const std::vector<int>& fold, double t_assignment,
+                             double t);
+
+std::string crease_svg(const CreasePattern& pattern);
+nlohmann::json crease_fold(const CreasePattern& pattern);
+
+}  // namespace phedra
