@@ -46,7 +46,8 @@ nlohmann::json direction_json(const FlexDirection& f) {
           {"reason", f.reason},
           {"expansion", f.expansion},
           {"strip_folds", f.strip_folds},
-          {"reach", f.folds ? nlohmann::json(f.reach) : nlohmann::json(nullptr)}};
+          {"reach", f.folds ? nlohmann::json(f.reach) : nlohmann::json(nullptr)},
+          {"flat_at_reach", f.folds && f.flat_at_reach}};
 }
 
 }  // namespace
@@ -103,7 +104,10 @@ void add_develop_command(CLI::App& app, Context& context) {
                   << "), flat at t* = " << format_number(pattern.t_star()) << '\n';
       for (const FlexDirection& f : directions) {
         context.out << (f.direction > 0 ? "t increasing: " : "t decreasing: ")
-                    << (f.folds ? "folds, until t = " + format_number(f.reach) : "no flex: " + f.reason) << '\n';
+                    << (f.folds ? "folds, until t = " + format_number(f.reach) +
+                                      (f.flat_at_reach ? " where it is flat again (flat-foldable)" : "")
+                                : "no flex: " + f.reason)
+                    << '\n';
         if (!f.expansion.empty()) {
           context.out << "  non-expansion <v(P)-v(Q), P-Q> per strip (<= 0 folds):";
           for (std::size_t i = 0; i < f.expansion.size(); ++i) {
@@ -145,7 +149,8 @@ void add_develop_command(CLI::App& app, Context& context) {
       context.out << report.dump(2) << '\n';
       return;
     }
-    context.out << "folding " << (chosen->direction > 0 ? "up" : "down") << " with strip choices "
+    context.out << "every one of the 2^" << pattern.strips() << " choices of the strips folds that way (--fold picks one)\n"
+                << "folding " << (chosen->direction > 0 ? "up" : "down") << " with strip choices "
                 << report["fold"].get<std::string>() << ": " << creases.mountains << " mountain and " << creases.valleys
                 << " valley creases; the written state is t = " << format_number(t) << '\n';
     for (const std::string& path : o->outputs) context.out << "wrote " << path << '\n';

@@ -67,9 +67,10 @@ TEST_CASE("the shipped flat pattern folds for t increasing, with every choice of
   // At t* the pattern is flat; every choice folds it isometrically, each panel stays planar.
   for (unsigned bits = 0; bits < (1U << p.strips()); ++bits) {
     const std::vector<int> fold = choices(p.strips(), bits);
-    REQUIRE(p.folded(p.t_star(), fold));
+    const std::optional<Points> flat = p.folded(p.t_star(), fold);
+    REQUIRE(flat);
     // (A bifurcation: rounding in cos(dphi) = 1 shows as its square root, ~1e-8 of the size.)
-    for (const Vec3& v : *p.folded(p.t_star(), fold)) CHECK(std::abs(v.y()) < 1e-6 * p.size());
+    for (const Vec3& v : *flat) CHECK(std::abs(v.y()) < 1e-6 * p.size());
     for (double f : {1e-6, 0.1, 0.5, 0.9, 1.0}) {
       const double t = p.t_star() + f * (d[0].reach - p.t_star());
       const std::optional<Points> x = p.folded(t, fold);
@@ -81,6 +82,17 @@ TEST_CASE("the shipped flat pattern folds for t increasing, with every choice of
     CHECK(!p.folded(p.t_star() - 1e-3 * p.size(), fold));
     CHECK(!p.folded(d[0].reach + 1e-3 * p.size(), fold));
   }
+}
+
+TEST_CASE("one strip is flat-foldable: flat again where its motion ends", "[developed]") {
+  DevelopedInput in = developed_from_json(parse_json_text(read_text_file(pattern_file)));
+  in.trajectory.resize(2);
+  const DevelopedPattern one(in);
+  const FlexDirection up = one.flex_directions()[0];
+  REQUIRE(up.folds);
+  CHECK(up.flat_at_reach);
+  // The shipped pattern (four strips) ends with one strip at its limit, not flat.
+  CHECK(!load_pattern(pattern_file).flex_directions()[0].flat_at_reach);
 }
 
 TEST_CASE("the folded preset is an ordinary P-hedron whose motion ends flat", "[developed]") {

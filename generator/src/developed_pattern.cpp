@@ -267,6 +267,12 @@ std::vector<FlexDirection> DevelopedPattern::flex_directions() const {
         (folded(mid, valley) ? good : bad) = mid;
       }
       f.reach = good;
+      if (const auto p = in_plane(good)) {
+        f.flat_at_reach = true;
+        for (std::size_t i = 1; i < rows; ++i) {
+          f.flat_at_reach = f.flat_at_reach && std::abs(std::abs(*cos_turn(i, *p)) - 1.0) < 1e-9;
+        }
+      }
     }
     out.push_back(f);
   }

@@ -53,6 +53,9 @@ struct FlexDirection {
   std::vector<bool> strip_folds;     ///< per strip: cos(dphi_i) <= 1 just beyond t* (exact, not only first order)
   std::string reason;                ///< why it does not fold (the first strip or the linkage)
   double reach = 0.0;                ///< folds: the t where this side's motion ends (a limit)
+  /// folds: at `reach` every profile plane is back in one plane (every strip at a
+  /// bifurcation at once): the pattern is flat-foldable, flat again there.
+  bool flat_at_reach = false;
 };
 
 class DevelopedPattern {
