@@ -5,6 +5,11 @@
 // a sanitizer report, a non-finite number in an output) is a finding.
 
 #include "phedra/assembly_check.h"
+#include "phedra/crease_pattern.h"
+#include "phedra/developed_pattern.h"
+#include "phedra/flat_outlines.h"
+#include "phedra/metamaterial_metrics.h"
+#include "phedra/self_intersection.h"
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
@@ -30,12 +35,36 @@ void must(bool ok) {
   if (!ok) std::abort();
 }
 
+/// A developed (flat) pattern: the criterion, the folding and the crease pattern.
+void developed(const nlohmann::json& document, const std::uint8_t* data, std::size_t size) {
+  using namespace phedra;
+  const DevelopedPattern pattern(developed_from_json(document));
+  if (pattern.strips() * pattern.columns() > 4000) return;
+  for (const FlexDirection& f : pattern.flex_directions()) {
+    if (!f.folds) continue;
+    std::vector<int> fold(pattern.strips(), 1);
+    for (std::size_t i = 0; i < fold.size(); ++i) fold[i] = fraction(data, size, i) < 0.5 ? 1 : -1;
+    const double t = pattern.t_star() + 0.5 * (f.reach - pattern.t_star());
+    const std::optional<Points> x = pattern.folded(t, fold);
+    must(x.has_value());
+    for (const Vec3& p : *x) must(p.allFinite());
+    const CreasePattern c = crease_pattern(pattern, fold, pattern.t_star() + 1e-3 * (f.reach - pattern.t_star()), t);
+    crease_svg(c);
+    crease_fold(c);
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace phedra;
   try {
-    const Design design = design_from_json(parse_json_text(std::string_view(reinterpret_cast<const char*>(data), size)));
+    const nlohmann::json document = parse_json_text(std::string_view(reinterpret_cast<const char*>(data), size));
+    if (document.is_object() && document.contains("developed")) {
+      developed(document, data, size);
+      return 0;
+    }
+    const Design design = design_from_json(document);
     const Assembly& a = design.assembly;
     if (a.total_vertex_count() > 4000) return 0;  // big but valid: not what this harness looks for
     const FlexionInterval& f = a.flexion_interval();
@@ -70,6 +99,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     fold_json(design, ts);
     motion_json(motion_document(design), ts);
     mesh_text(design, a.t_star(), ".obj");
+    // The analyses: self-intersection, metamaterial figures, fabrication outlines.
+    const SelfIntersectionReport intersections = find_self_intersections(design, {.samples_per_side = 8});
+    must(intersections.free_lower <= intersections.free_upper);
+    metamaterial_metrics(design, {.samples = 5}).to_svg();
+    outlines_dxf(flat_outlines(design));
   } catch (const Error&) {
     // A clear answer to a bad input (or an internal error refusing a non-finite
     // number, which the writers raise on purpose: treat as a finding).

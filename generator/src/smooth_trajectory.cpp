@@ -61,7 +61,8 @@ SmoothCurve helix(const json& spec, const Vec3& axis) {
   if (!(radius > 0.0)) throw InvalidInputError(field + ".radius", "must be positive, got " + format_number(radius));
   if (!(turns > 0.0)) throw InvalidInputError(field + ".turns", "must be positive, got " + format_number(turns));
   if (turns > 1000.0) throw InvalidInputError(field + ".turns", "at most 1000 turns, got " + format_number(turns));
-  const auto [e1, e2] = plane_basis(axis);
+  const std::pair<Vec3, Vec3> basis = plane_basis(axis);
+  const Vec3 e1 = basis.first, e2 = basis.second;  // (lambdas cannot capture structured bindings in C++17 clang)
   const double theta0 = start * std::numbers::pi / 180.0;
   const double span = (clockwise ? -1.0 : 1.0) * 2.0 * std::numbers::pi * turns;
   const double climb = rise * turns;  // along the axis over the whole curve
