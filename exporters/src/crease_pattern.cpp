@@ -51,7 +51,9 @@ CreasePattern crease_pattern(const DevelopedPattern& pattern, const std::vector<
     }
   }
   const double flat_tolerance = 1e-12;  // radians
-  for (const auto& [edge, faces] : faces_of) {
+  for (const auto& entry : faces_of) {
+    const std::pair<std::size_t, std::size_t> edge = entry.first;  // (captured below: no structured binding)
+    const std::vector<std::size_t>& faces = entry.second;
     c.edges.push_back({edge.first, edge.second});
     if (faces.size() < 2) {
       c.assignment.push_back('B');
