@@ -18,7 +18,8 @@ std::string mime_type(const std::filesystem::path& file) {
   static const std::map<std::string, std::string> types{
       {".html", "text/html; charset=utf-8"}, {".js", "text/javascript"},  {".mjs", "text/javascript"},
       {".css", "text/css"},                  {".json", "application/json"}, {".glb", "model/gltf-binary"},
-      {".gltf", "model/gltf+json"},          {".png", "image/png"},       {".svg", "image/svg+xml"}};
+      {".gltf", "model/gltf+json"},          {".png", "image/png"},       {".svg", "image/svg+xml"},
+      {".wasm", "application/wasm"}};
   const auto it = types.find(file.extension().string());
   return it == types.end() ? "application/octet-stream" : it->second;
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what phedra needs from Debian packages, only what is missing
-# (chromium runs the viewer's browser test), then the npm packages of web/.
+# (chromium runs the viewer's browser test; emscripten and node-acorn build the
+# browser core, scripts/build-wasm.sh), then the npm packages of web/.
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
 set -euo pipefail
 
@@ -8,6 +9,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   catch2 libbenchmark-dev
+  emscripten node-acorn
   chromium
 )
 

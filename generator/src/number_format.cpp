@@ -2,13 +2,27 @@
 
 #include <array>
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 
 namespace phedra {
 
 void append_number(std::string& out, double value) {
   std::array<char, 32> buffer{};
+#if defined(__cpp_lib_to_chars)
   auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
   out.append(buffer.data(), result.ptr);
+#else
+  // No floating-point to_chars (the libc++ of Debian's emscripten): the shortest
+  // %g that reads back as the same double, which is what to_chars gives too
+  // (only its spelling of exponents may differ).
+  int length = 0;
+  for (int precision = 1; precision <= 17; ++precision) {
+    length = std::snprintf(buffer.data(), buffer.size(), "%.*g", precision, value);
+    if (std::strtod(buffer.data(), nullptr) == value) break;
+  }
+  out.append(buffer.data(), static_cast<std::size_t>(length));
+#endif
 }
 
 std::string format_number(double value) {

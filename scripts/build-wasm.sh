@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Builds the phedra core for the browser with Debian's emscripten (issue 8):
+# web/wasm/phedra.mjs + phedra.wasm (an ES module whose default export is the factory `createPhedra`, see
+# wasm/bindings.cpp). Only Eigen and nlohmann-json are needed besides the
+# project's own sources. Incremental: an object is rebuilt when its source or a
+# header changed (em++ -MMD dependency files in build-wasm/).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+export NODE_PATH="${NODE_PATH:-/usr/share/nodejs}"  # emscripten's optimizer needs Debian's node-acorn
+command -v em++ >/dev/null || { echo "build-wasm: em++ not found (bash scripts/setup.sh installs emscripten)" >&2; exit 1; }
+out=build-wasm
+mkdir -p "$out/include" "$out/obj" web/wasm
+# Only the headers phedra needs, not all of /usr/include (host headers would shadow emscripten's libc).
+ln -sfn /usr/include/eigen3/Eigen "$out/include/Eigen"
+ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
+flags=(-std=c++20 -O2 -fexceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
+       -Ianalysis/include -Iexporters/include -I"$out/include")
+sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp
+         exporters/src/fold_export.cpp wasm/bindings.cpp)
+objects=()
+pids=()
+jobs="$(nproc)"
+for src in "${sources[@]}"; do
+  obj="$out/obj/$(echo "$src" | tr '/' '_').o"
+  objects+=("$obj")
+  dep="${obj%.o}.d"
+  stale=0
+  if [[ ! -f "$obj" || "$src" -nt "$obj" ]]; then
+    stale=1
+  elif [[ -f "$dep" ]]; then
+    for h in $(sed -e 's/\\$//' -e 's/^[^:]*://' "$dep"); do
+      [[ -f "$h" && "$h" -nt "$obj" ]] && { stale=1; break; }
+    done
+  fi
+  if (( stale )); then
+    em++ "${flags[@]}" -MMD -MF "$dep" -c "$src" -o "$obj" &
+    pids+=($!)
+    if (( ${#pids[@]} >= jobs )); then wait "${pids[0]}"; pids=("${pids[@]:1}"); fi
+  fi
+done
+for pid in "${pids[@]}"; do wait "$pid"; done
+em++ "${objects[@]}" -O2 -fexceptions --bind -sMODULARIZE=1 -sEXPORT_NAME=createPhedra -sALLOW_MEMORY_GROWTH=1 \
+  -sENVIRONMENT=web,node -sEXPORT_ES6=1 -o web/wasm/phedra.mjs
+echo "build-wasm: web/wasm/phedra.mjs, web/wasm/phedra.wasm ($(stat -c %s web/wasm/phedra.wasm) bytes)"

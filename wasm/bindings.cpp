@@ -1,0 +1,155 @@
+// The phedra core for the browser (issue 8): embind bindings over the same
+// library the command uses. A Designer holds one design built from preset text;
+// every call either answers or returns {ok: false, field, message} (the CLI's
+// validation messages), never throws into JavaScript.
+
+#include "phedra/assembly_check.h"
+#include "phedra/assembly_mesh.h"
+#include "phedra/design.h"
+#include "phedra/errors.h"
+#include "phedra/fold_export.h"
+#include "phedra/preset.h"
+#include "phedra/self_intersection.h"
+
+#include <emscripten/bind.h>
+#include <emscripten/val.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace {
+
+using emscripten::val;
+using namespace phedra;
+
+val failure(const std::string& field, const std::string& message) {
+  val v = val::object();
+  v.set("ok", false);
+  v.set("field", field);
+  v.set("message", message);
+  return v;
+}
+
+class Designer {
+ public:
+  /// Builds the design of a preset (JSON text). {ok: true} or {ok: false, field, message}.
+  val load(const std::string& text) {
+    try {
+      Design design = design_from_json(parse_json_text(text));
+      mesh_ = design.merge ? merged_mesh(design.assembly) : separate_mesh(design.assembly);
+      design_.emplace(std::move(design));
+      positions_.assign(3 * mesh_.vertices.size(), 0.0);
+      faces_.clear();
+      for (const Quad& q : mesh_.faces) {
+        for (std::size_t c : q) faces_.push_back(static_cast<std::uint32_t>(c));
+      }
+      val ok = val::object();
+      ok.set("ok", true);
+      return ok;
+    } catch (const InvalidInputError& e) {
+      design_.reset();
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      design_.reset();
+      return failure("", e.what());
+    }
+  }
+
+  bool loaded() const { return design_.has_value(); }
+
+  /// What `phedra info --json` says first: name, kind, t*, the interval and its limits, counts.
+  val info() const {
+    if (!design_) return failure("", "no design loaded");
+    const Assembly& a = design_->assembly;
+    val v = val::object();
+    v.set("ok", true);
+    v.set("name", a.name());
+    v.set("kind", design_->kind);
+    v.set("t_star", a.t_star());
+    v.set("t_lambda", a.flexion_interval().lower.t);
+    v.set("t_mu", a.flexion_interval().upper.t);
+    v.set("lambda_strip", static_cast<double>(a.flexion_interval().lower.strip));
+    v.set("mu_strip", static_cast<double>(a.flexion_interval().upper.strip));
+    v.set("members", static_cast<double>(a.member_count()));
+    v.set("closed", a.closed(0));
+    v.set("vertices", static_cast<double>(mesh_.vertices.size()));
+    v.set("faces", static_cast<double>(mesh_.faces.size()));
+    v.set("model_size", a.model_size());
+    return v;
+  }
+
+  /// Quads as vertex indices (4 a face), a view into the module's memory: copy it.
+  val faces() const { return val(emscripten::typed_memory_view(faces_.size(), faces_.data())); }
+
+  /// Vertex positions at t (x, y, z a vertex, preset frame), a view into the
+  /// module's memory valid until the next call: copy or use at once. Outside the
+  /// flexion interval: {ok: false, ...}.
+  val evaluate(double t) {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      design_->assembly.evaluate(t, configuration_);
+    } catch (const Error& e) {
+      return failure("t", e.what());
+    }
+    for (std::size_t k = 0; k < mesh_.vertices.size(); ++k) {
+      const VertexRef& r = mesh_.vertices[k];
+      const Vec3& p = configuration_.members[r.member][r.vertex];
+      positions_[3 * k] = p.x();
+      positions_[3 * k + 1] = p.y();
+      positions_[3 * k + 2] = p.z();
+    }
+    return val(emscripten::typed_memory_view(positions_.size(), positions_.data()));
+  }
+
+  /// The check figures over `samples` configurations (relative to the model size).
+  val check(int samples) const {
+    if (!design_) return failure("", "no design loaded");
+    CheckOptions options;
+    options.samples = static_cast<std::size_t>(std::max(2, samples));
+    const AssemblyCheckReport r = check_assembly(design_->assembly, options);
+    const double size = design_->assembly.model_size();
+    val v = val::object();
+    v.set("ok", true);
+    v.set("passed", r.passed());
+    v.set("planarity", r.planarity.value / size);
+    v.set("isometry", r.isometry.value / size);
+    v.set("closure", r.closure.value / size);
+    v.set("shared", r.shared.value / size);
+    v.set("closed", r.closed);
+    v.set("warning", r.warning);
+    return v;
+  }
+
+  /// FOLD text with `count` frames over the flexion interval (as `phedra generate -o X.fold --count N`).
+  std::string fold(int count) const {
+    if (!design_) return "";
+    std::vector<double> ts;
+    const FlexionInterval& f = design_->assembly.flexion_interval();
+    const int n = std::max(2, count);
+    for (int k = 0; k < n; ++k) ts.push_back(k + 1 == n ? f.upper.t : f.lower.t + (f.upper.t - f.lower.t) * k / (n - 1));
+    return fold_json(*design_, ts);
+  }
+
+ private:
+  std::optional<Design> design_;
+  AssemblyMesh mesh_;
+  AssemblyConfiguration configuration_;
+  std::vector<double> positions_;
+  std::vector<std::uint32_t> faces_;
+};
+
+}  // namespace
+
+EMSCRIPTEN_BINDINGS(phedra) {
+  emscripten::class_<Designer>("Designer")
+      .constructor<>()
+      .function("load", &Designer::load)
+      .function("loaded", &Designer::loaded)
+      .function("info", &Designer::info)
+      .function("faces", &Designer::faces)
+      .function("evaluate", &Designer::evaluate)
+      .function("check", &Designer::check)
+      .function("fold", &Designer::fold);
+}
