@@ -23,18 +23,35 @@ struct ViewOptions {
 void add_view_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<ViewOptions>();
   CLI::App* sub = app.add_subcommand(
-      "view", "Serve the viewer page for a .glb on 127.0.0.1 (play and scrub the motion in a browser); prints the "
-              "address and serves until interrupted");
-  sub->add_option("file", o->file, "An animated .glb written by `phedra generate`")->required();
+      "view", "Serve on 127.0.0.1 the viewer page for a .glb (play and scrub the motion in a browser), or for a "
+              "preset (.json) the designer page: edit the control polylines and see the P-hedron fold live, with "
+              "the core running in the browser (WebAssembly); prints the address and serves until interrupted");
+  sub->add_option("file", o->file, "An animated .glb written by `phedra generate`, or a preset .json to design")->required();
   sub->add_option("--port", o->port, "Port on 127.0.0.1 (0: any free port)")->capture_default_str();
   sub->add_option("--web", o->web, "The viewer's directory (web/ with its node_modules)")->capture_default_str();
   sub->add_option("--requests", o->requests, "Stop after this many requests (0: serve until interrupted)");
   sub->callback([o, &context] {
     namespace fs = std::filesystem;
-    if (fs::path(o->file).extension() != ".glb") {
-      throw InvalidInputError("file", "the viewer shows .glb files (write one with `phedra generate PRESET -o FILE.glb`)");
+    const std::string ext = fs::path(o->file).extension().string();
+    if (ext != ".glb" && ext != ".json") {
+      throw InvalidInputError("file", "the viewer shows .glb files (write one with `phedra generate PRESET -o FILE.glb`) "
+                                      "and the designer edits presets (.json)");
     }
     if (!fs::is_regular_file(o->file)) throw IOError(o->file + ": no such file");
+    if (ext == ".json") {
+      if (!fs::is_regular_file(fs::path(o->web) / "wasm" / "phedra.mjs")) {
+        throw IOError(o->web + "/wasm/phedra.mjs is missing: run `bash scripts/build-wasm.sh` first");
+      }
+      if (!fs::is_directory(fs::path(o->web) / "node_modules" / "three")) {
+        throw IOError(o->web + "/node_modules/three is missing: run `bash scripts/setup.sh` first");
+      }
+      StaticServer server(o->web, o->port);
+      server.add_file("/preset.json", o->file);
+      context.out << "designer for " << o->file << " at http://127.0.0.1:" << server.port() << "/designer.html"
+                  << std::endl;
+      server.serve(o->requests);
+      return;
+    }
     if (!fs::is_regular_file(fs::path(o->web) / "index.html")) {
       throw IOError(o->web + ": the viewer page (index.html) is not there; give --web DIR");
     }

@@ -13,7 +13,7 @@ mkdir -p "$out/include" "$out/obj" web/wasm
 # Only the headers phedra needs, not all of /usr/include (host headers would shadow emscripten's libc).
 ln -sfn /usr/include/eigen3/Eigen "$out/include/Eigen"
 ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
-flags=(-std=c++20 -O2 -fexceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
+flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
        -Ianalysis/include -Iexporters/include -I"$out/include")
 sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp
          exporters/src/fold_export.cpp wasm/bindings.cpp)
@@ -39,6 +39,6 @@ for src in "${sources[@]}"; do
   fi
 done
 for pid in "${pids[@]}"; do wait "$pid"; done
-em++ "${objects[@]}" -O2 -fexceptions --bind -sMODULARIZE=1 -sEXPORT_NAME=createPhedra -sALLOW_MEMORY_GROWTH=1 \
+em++ "${objects[@]}" -O3 -fwasm-exceptions --bind -sMODULARIZE=1 -sEXPORT_NAME=createPhedra -sALLOW_MEMORY_GROWTH=1 \
   -sENVIRONMENT=web,node -sEXPORT_ES6=1 -o web/wasm/phedra.mjs
 echo "build-wasm: web/wasm/phedra.mjs, web/wasm/phedra.wasm ($(stat -c %s web/wasm/phedra.wasm) bytes)"

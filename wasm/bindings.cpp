@@ -11,6 +11,8 @@
 #include "phedra/preset.h"
 #include "phedra/self_intersection.h"
 
+#include <nlohmann/json.hpp>
+
 #include <emscripten/bind.h>
 #include <emscripten/val.h>
 
@@ -34,29 +36,67 @@ val failure(const std::string& field, const std::string& message) {
 
 class Designer {
  public:
-  /// Builds the design of a preset (JSON text). {ok: true} or {ok: false, field, message}.
+  /// Builds the design of a preset (JSON text). {ok: true} or {ok: false, field, message};
+  /// a preset that fails leaves the previous design in place.
   val load(const std::string& text) {
     try {
-      Design design = design_from_json(parse_json_text(text));
-      mesh_ = design.merge ? merged_mesh(design.assembly) : separate_mesh(design.assembly);
+      return build(parse_json_text(text));
+    } catch (const InvalidInputError& e) {
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      return failure("", e.what());
+    }
+  }
+
+  /// An edit while dragging, without the round trip through JSON text: sets
+  /// trajectory[i] or directions[i] (key) to (x, y, z), or apex_heights[i] /
+  /// tube.apex_heights[i] (key) to x, and rebuilds. Refused: the previous design
+  /// and preset stay.
+  val set(const std::string& key, int index, double x, double y, double z) {
+    if (!design_) return failure("", "no design loaded");
+    nlohmann::json* list = nullptr;
+    if (key == "tube.apex_heights") {
+      if (document_.contains("tube") && document_["tube"].contains("apex_heights")) list = &document_["tube"]["apex_heights"];
+    } else if (document_.contains(key)) {
+      list = &document_[key];
+    }
+    if (!list || !list->is_array() || index < 0 || static_cast<std::size_t>(index) >= list->size()) {
+      return failure(key, "no such entry " + std::to_string(index));
+    }
+    nlohmann::json& entry = (*list)[static_cast<std::size_t>(index)];
+    const nlohmann::json previous = entry;
+    entry = key == "trajectory" || key == "directions" ? nlohmann::json::array({x, y, z}) : nlohmann::json(x);
+    try {
+      return build(document_);
+    } catch (const InvalidInputError& e) {
+      entry = previous;
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      entry = previous;
+      return failure("", e.what());
+    }
+  }
+
+ private:
+  val build(const nlohmann::json& document) {
+    {
+      Design design = design_from_json(document);
+      AssemblyMesh mesh = design.merge ? merged_mesh(design.assembly) : separate_mesh(design.assembly);
+      mesh_ = std::move(mesh);
       design_.emplace(std::move(design));
       positions_.assign(3 * mesh_.vertices.size(), 0.0);
       faces_.clear();
       for (const Quad& q : mesh_.faces) {
         for (std::size_t c : q) faces_.push_back(static_cast<std::uint32_t>(c));
       }
+      if (&document != &document_) document_ = document;
       val ok = val::object();
       ok.set("ok", true);
       return ok;
-    } catch (const InvalidInputError& e) {
-      design_.reset();
-      return failure(e.field(), e.reason());
-    } catch (const Error& e) {
-      design_.reset();
-      return failure("", e.what());
     }
   }
 
+ public:
   bool loaded() const { return design_.has_value(); }
 
   /// What `phedra info --json` says first: name, kind, t*, the interval and its limits, counts.
@@ -103,6 +143,24 @@ class Designer {
     return val(emscripten::typed_memory_view(positions_.size(), positions_.data()));
   }
 
+  /// The apexes S_0..S_n of the base at t (x, y, z each, preset frame): on the axis, the line
+  /// pi_0 and pi_1 share, which stays in place during the motion.
+  val apexes(double t) {
+    if (!design_) return failure("", "no design loaded");
+    const PHedron& base = design_->assembly.base();
+    try {
+      const std::vector<double> heights = base.apex_heights(t);
+      apexes_.clear();
+      for (double h : heights) {
+        const Vec3 p = base.frame().point_to_user(Vec3(0.0, 0.0, base.frame().height_to_canonical(h)));
+        apexes_.insert(apexes_.end(), {p.x(), p.y(), p.z()});
+      }
+    } catch (const Error& e) {
+      return failure("t", e.what());
+    }
+    return val(emscripten::typed_memory_view(apexes_.size(), apexes_.data()));
+  }
+
   /// The check figures over `samples` configurations (relative to the model size).
   val check(int samples) const {
     if (!design_) return failure("", "no design loaded");
@@ -134,10 +192,12 @@ class Designer {
 
  private:
   std::optional<Design> design_;
+  nlohmann::json document_;  ///< the preset of design_
   AssemblyMesh mesh_;
   AssemblyConfiguration configuration_;
   std::vector<double> positions_;
   std::vector<std::uint32_t> faces_;
+  std::vector<double> apexes_;
 };
 
 }  // namespace
@@ -146,10 +206,12 @@ EMSCRIPTEN_BINDINGS(phedra) {
   emscripten::class_<Designer>("Designer")
       .constructor<>()
       .function("load", &Designer::load)
+      .function("set", &Designer::set)
       .function("loaded", &Designer::loaded)
       .function("info", &Designer::info)
       .function("faces", &Designer::faces)
       .function("evaluate", &Designer::evaluate)
+      .function("apexes", &Designer::apexes)
       .function("check", &Designer::check)
       .function("fold", &Designer::fold);
 }

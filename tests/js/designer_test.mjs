@@ -1,0 +1,178 @@
+// The designer page end to end in headless Chromium (Debian's /usr/bin/chromium
+// driven by playwright-core): open a preset, drag a handle and see the mesh
+// change, break an assumption and see the CLI's message next to its handle,
+// move the slider, save the preset and compare with `phedra sample`, export
+// .glb and FOLD, and time drag steps of a 10^4-vertex model (printed: the figure
+// of docs/performance.md, not a pass/fail criterion).
+// usage: node tests/js/designer_test.mjs PHEDRA_BINARY PRESET SCREENSHOT.png
+import { createRequire } from 'node:module';
+import { execFileSync, spawn } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+
+const require = createRequire(new URL('../../web/package.json', import.meta.url));
+const { chromium } = require('playwright-core');
+const [phedra, preset, screenshot] = process.argv.slice(2);
+const scratch = mkdtempSync(path.join(tmpdir(), 'phedra-designer-'));
+
+const server = spawn(phedra, ['view', preset, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+const address = await new Promise((resolve, reject) => {
+  let text = '';
+  server.stdout.on('data', (d) => { text += d; const m = text.match(/http:\/\/127\.0\.0\.1:\d+\/designer\.html/); if (m) resolve(m[0]); });
+  server.on('exit', (code) => reject(new Error(`phedra view exited with ${code}`)));
+  setTimeout(() => reject(new Error('phedra view printed no address')), 10000);
+});
+
+const failures = [];
+const check = (ok, what) => { if (!ok) failures.push(what); };
+const browser = await chromium.launch({
+  executablePath: '/usr/bin/chromium',
+  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
+         '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+});
+try {
+  const page = await browser.newPage({ viewport: { width: 1100, height: 760 }, acceptDownloads: true });
+  const errors = [];
+  page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(address);
+  await page.waitForFunction(() => window.phedraDesigner?.ready === true, null, { timeout: 30000 });
+  await page.waitForTimeout(300);
+  const api = (f, ...args) => page.evaluate(f, ...args);
+
+  // Rendered: the canvas holds more than the background.
+  const colours = await api(() => {
+    const source = document.querySelector('#view canvas');
+    const copy = document.createElement('canvas');
+    copy.width = 200; copy.height = 140;
+    const g = copy.getContext('2d');
+    g.drawImage(source, 0, 0, copy.width, copy.height);
+    const data = g.getImageData(0, 0, copy.width, copy.height).data;
+    const seen = new Set();
+    for (let i = 0; i < data.length; i += 4) seen.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | (data[i + 2] >> 3));
+    return seen.size;
+  });
+  check(colours >= 10, `the canvas looks blank (${colours} colours)`);
+  if (screenshot) await page.screenshot({ path: screenshot });
+
+  // Drag trajectory point 3 with the mouse: the preset and the mesh change, still valid.
+  const info = await api(() => window.phedraDesigner.info());
+  const vertex = 3 * (info.vertices / (await api(() => window.phedraDesigner.preset().trajectory.length)));  // a vertex of row 3
+  const before = await api((k) => window.phedraDesigner.vertex(k), vertex);
+  const beforePoint = await api(() => window.phedraDesigner.preset().trajectory[3]);
+  const [x, y] = await api(() => window.phedraDesigner.handleScreen('trajectory', 3));
+  await page.mouse.move(x, y);
+  await page.mouse.down();
+  for (let k = 1; k <= 5; ++k) await page.mouse.move(x + 6 * k, y - 4 * k);
+  await page.mouse.up();
+  await page.waitForTimeout(200);
+  const afterPoint = await api(() => window.phedraDesigner.preset().trajectory[3]);
+  const after = await api((k) => window.phedraDesigner.vertex(k), vertex);
+  const movedPoint = Math.hypot(...beforePoint.map((v, i) => v - afterPoint[i]));
+  const movedMesh = Math.hypot(...before.map((v, i) => v - after[i]));
+  check(movedPoint > 1e-3, `dragging did not move trajectory[3] (${movedPoint})`);
+  check(movedMesh > 1e-4, `dragging did not change the mesh (${movedMesh})`);
+  check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag: ${await api(() => window.phedraDesigner.message())}`);
+
+  // Break an assumption through the preset JSON: a direction along the axis.
+  const shown = await api(() => window.phedraDesigner.positions());
+  await page.click('summary');
+  await page.$eval('#json', (area) => {
+    const p = JSON.parse(area.value);
+    p.directions[2] = [0, 0, 1];
+    area.value = JSON.stringify(p);
+    area.dispatchEvent(new Event('input'));
+  });
+  await page.waitForTimeout(100);
+  const message = await api(() => window.phedraDesigner.message());
+  const label = await api(() => window.phedraDesigner.labelText());
+  const cliMessage = (() => {
+    const p = JSON.parse(readFileSync(preset, 'utf8'));
+    p.directions[2] = [0, 0, 1];
+    const file = path.join(scratch, 'broken.json');
+    require('node:fs').writeFileSync(file, JSON.stringify(p));
+    try { execFileSync(phedra, ['info', file], { stdio: ['ignore', 'pipe', 'pipe'] }); return ''; } catch (e) { return String(e.stderr); }
+  })();
+  check(message.startsWith('directions[2]: '), `the broken direction gave "${message}"`);
+  check(cliMessage.includes(message), `page "${message}" vs CLI "${cliMessage.trim()}"`);
+  check(label === message, `no label next to the handle ("${label}")`);
+  const still = await api(() => window.phedraDesigner.positions());
+  check(still.length === shown.length && still.every((v, i) => v === shown[i]), 'a refused edit changed the shown design');
+  // Undo it the same way: valid again.
+  await page.$eval('#json', (area) => {
+    const p = JSON.parse(area.value);
+    p.directions[2] = [1, 0.2, 0];
+    area.value = JSON.stringify(p);
+    area.dispatchEvent(new Event('input'));
+  });
+  await page.waitForTimeout(100);
+  check((await api(() => window.phedraDesigner.message())) === 'valid', 'the repaired preset is not valid');
+
+  // The slider: t and the mesh change.
+  const t0 = await api(() => window.phedraDesigner.t());
+  const v0 = await api(() => window.phedraDesigner.vertex(5));
+  await page.$eval('#slider', (s) => { s.value = 120; s.dispatchEvent(new Event('input')); });
+  await page.waitForTimeout(100);
+  const t1 = await api(() => window.phedraDesigner.t());
+  const v1 = await api(() => window.phedraDesigner.vertex(5));
+  check(t1 !== t0, 'the slider did not change t');
+  check(Math.hypot(...v0.map((v, i) => v - v1[i])) > 1e-6, 'the slider did not change the mesh');
+  const shownT = Number(await page.$eval('#t', (e) => e.textContent));
+  check(Math.abs(shownT - t1) < 1e-3, `the page shows t = ${shownT}, not ${t1}`);
+
+  // Save, and compare with the CLI at the same t.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save')]);
+  const saved = path.join(scratch, 'saved.json');
+  await download.saveAs(saved);
+  const sample = JSON.parse(execFileSync(phedra, ['sample', saved, '--t', String(t1)], { encoding: 'utf8', maxBuffer: 1 << 26 }));
+  const positions = await api(() => window.phedraDesigner.positions());
+  let worst = 0;
+  sample.samples[0].vertices.forEach((v, i) => { for (let c = 0; c < 3; ++c) worst = Math.max(worst, Math.abs(v[c] - positions[3 * i + c])); });
+  check(3 * sample.samples[0].vertices.length === positions.length, 'the saved preset has another vertex count');
+  check(worst < 1e-9 * info.model_size, `the saved preset differs from the page by ${worst}`);
+
+  // Exports.
+  const glb = await api(() => window.phedraDesigner.glbSize());
+  check(glb > 1000, `.glb export of ${glb} bytes`);
+  const fold = JSON.parse(await api(() => window.phedraDesigner.fold()));
+  check(fold.file_frames?.length === 4, 'FOLD export without its frames');
+
+  // Sign toggle and mode: still the CLI's verdicts.
+  await page.click('#signs button');
+  await page.waitForTimeout(100);
+  const afterSign = await api(() => window.phedraDesigner.preset().signs);
+  check(afterSign !== JSON.parse(readFileSync(saved, 'utf8')).signs, 'the sign toggle did nothing');
+
+  // Real time: edits of a 10^4-vertex model.
+  const big = (() => {
+    const m = 1111, trajectory = [], directions = [];
+    for (let i = 0; i <= m; ++i) {
+      const q = 0.33 * 2 * Math.PI * i / m;
+      trajectory.push([3 * Math.cos(q), 3 * Math.sin(q), 1.32 * i / m]);
+      const r = q + 20 * Math.PI / 180;
+      directions.push([Math.cos(r), Math.sin(r), 0]);
+    }
+    return { name: 'big', trajectory, directions, apex_heights: [-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8], signs: '++++++' };
+  })();
+  const accepted = await api((p) => window.phedraDesigner.apply(p), big);
+  check(accepted, `the 10^4-vertex preset was refused: ${await api(() => window.phedraDesigner.message())}`);
+  if (accepted) {
+    const alone = await api(() => window.phedraDesigner.measure(40, false));
+    console.log(`designer: the core alone (no drawing in between): median ${alone.core.median.toFixed(2)} ms, worst ${alone.core.worst.toFixed(2)} ms`);
+    const timing = await api(() => window.phedraDesigner.measure(40));
+    console.log(`designer: ${timing.vertices} vertices, an edit (rebuild from the preset + evaluate): median ${timing.core.median.toFixed(2)} ms, worst ${timing.core.worst.toFixed(2)} ms; with upload and render: median ${timing.total.median.toFixed(2)} ms, worst ${timing.total.worst.toFixed(2)} ms`);
+    // A figure, not a pass/fail criterion (timings belong in benchmarks): docs/performance.md.
+    check(timing.vertices >= 10000, `the big model has ${timing.vertices} vertices`);
+  }
+  check(errors.length === 0, `console errors: ${errors.join(' | ')}`);
+  console.log(`designer: ${colours} colours, drag moved the mesh by ${movedMesh.toExponential(2)}, message "${message}", saved preset vs CLI ${worst.toExponential(2)}`);
+} finally {
+  await browser.close();
+  server.kill();
+  rmSync(scratch, { recursive: true, force: true });
+}
+if (failures.length) {
+  for (const f of failures) console.error(`FAIL: ${f}`);
+  process.exit(1);
+}
