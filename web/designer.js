@@ -216,7 +216,12 @@ function updatePanel() {
   const star = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
   $('tstarmark').style.marginLeft = `${Math.round(star * 100 - 50)}%`;
   $('json').value = JSON.stringify(preset, null, 2);
-  $('mode').value = preset.tube ? preset.tube.type : 'open';
+  $('mode').value = preset.grid ? 'grid' : preset.tube ? preset.tube.type : 'open';
+  $('grid-size').hidden = !preset.grid;
+  if (preset.grid) {
+    $('cells-u').value = String(preset.grid.u_heights.length - 1);
+    $('cells-w').value = String(preset.grid.w_heights.length - 1);
+  }
   const signs = $('signs');
   signs.textContent = '';
   if (typeof preset.signs === 'string') {
@@ -327,11 +332,38 @@ $('slider').addEventListener('input', (e) => {
   updatePositions();
 });
 
+/// Grid heights: cell (0, 0) has apexes (z0, z1, z2, z3); every further line of a
+/// family keeps the spacing of the first two.
+function gridHeights(z, cellsU, cellsW) {
+  const line = (a, b, count) => Array.from({ length: count + 1 }, (_, k) => a + k * (b - a));
+  return { u_heights: line(z[0], z[2], cellsU), w_heights: line(z[1], z[3], cellsW) };
+}
+
+function cellZ(p) {
+  if (p.grid) return [p.grid.u_heights[0], p.grid.w_heights[0], p.grid.u_heights[1], p.grid.w_heights[1]];
+  const heights = apexHeights(p);
+  return heights ? heights.list.slice() : [-1.5, 1.0, -0.5, 2.0];
+}
+
+for (const id of ['cells-u', 'cells-w']) {
+  $(id).addEventListener('change', () => {
+    if (!preset.grid) return;
+    const c = clone(preset);
+    c.grid = gridHeights(cellZ(c), Math.max(1, Number($('cells-u').value)), Math.max(1, Number($('cells-w').value)));
+    apply(c);
+  });
+}
+
 $('mode').addEventListener('change', (e) => {
   const c = clone(preset);
-  const heights = apexHeights(c);
-  const z = heights ? heights.list.slice() : [-1.5, 1.0, -0.5, 2.0];
-  if (e.target.value === 'open') {
+  const z = cellZ(c);
+  delete c.grid;
+  if (e.target.value === 'grid') {
+    delete c.apex_heights;
+    delete c.signs;
+    delete c.tube;
+    c.grid = gridHeights(z, Math.max(1, Number($('cells-u').value)), Math.max(1, Number($('cells-w').value)));
+  } else if (e.target.value === 'open') {
     delete c.tube;
     c.apex_heights = z.length >= 5 ? z : [...z.slice(0, 4), z[0] + 1.3];
     c.signs = '+'.repeat(c.apex_heights.length - 2);
@@ -343,7 +375,7 @@ $('mode').addEventListener('change', (e) => {
     if (e.target.value === 'anti-parallelogram') q[3] = q[0] + q[2] - q[1];  // its symmetry condition
     c.tube = { type: e.target.value, apex_heights: q };
   }
-  if (!apply(c)) e.target.value = preset.tube ? preset.tube.type : 'open';
+  if (!apply(c)) e.target.value = preset.grid ? 'grid' : preset.tube ? preset.tube.type : 'open';
 });
 
 $('add-profile').addEventListener('click', () => {

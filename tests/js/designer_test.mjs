@@ -144,6 +144,22 @@ try {
   const afterSign = await api(() => window.phedraDesigner.preset().signs);
   check(afterSign !== JSON.parse(readFileSync(saved, 'utf8')).signs, 'the sign toggle did nothing');
 
+  // Modes: a tube (closure in the figures) and a grid of cells.
+  await page.selectOption('#mode', 'parallelogram');
+  await page.waitForTimeout(400);
+  const tubeKind = await page.$eval('#kind', (e) => e.textContent);
+  check(tubeKind.startsWith('parallelogram tube'), `tube mode shows "${tubeKind}" (${await api(() => window.phedraDesigner.message())})`);
+  check((await page.$eval('#figures', (e) => e.textContent)).includes('closure'), 'no closure figure for the tube');
+  await page.selectOption('#mode', 'grid');
+  await page.waitForTimeout(200);
+  const gridKind = await page.$eval('#kind', (e) => e.textContent);
+  check(gridKind.includes('grid of parallelogram cells'), `grid mode shows "${gridKind}" (${await api(() => window.phedraDesigner.message())})`);
+  await page.fill('#cells-u', '2');
+  await page.$eval('#cells-u', (e) => e.dispatchEvent(new Event('change')));
+  await page.waitForTimeout(200);
+  const smaller = await page.$eval('#kind', (e) => e.textContent);
+  check(smaller.includes('2 x 3 grid'), `after 2 cells along u: "${smaller}"`);
+
   // Real time: edits of a 10^4-vertex model.
   const big = (() => {
     const m = 1111, trajectory = [], directions = [];
