@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Builds the phedra core for the browser with Debian's emscripten (issue 8):
 # web/wasm/phedra.mjs + phedra.wasm (an ES module whose default export is the factory `createPhedra`, see
-# wasm/bindings.cpp). Only Eigen and nlohmann-json are needed besides the
-# project's own sources. Incremental: an object is rebuilt when its source or a
+# wasm/bindings.cpp). Only Eigen, nlohmann-json and tinygltf's header are needed
+# besides the project's own sources. Incremental: an object is rebuilt when its source or a
 # header changed (em++ -MMD dependency files in build-wasm/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -13,10 +13,12 @@ mkdir -p "$out/include" "$out/obj" web/wasm
 # Only the headers phedra needs, not all of /usr/include (host headers would shadow emscripten's libc).
 ln -sfn /usr/include/eigen3/Eigen "$out/include/Eigen"
 ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
+ln -sfn /usr/include/tiny_gltf.h "$out/include/tiny_gltf.h"
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
        -Ianalysis/include -Iexporters/include -I"$out/include")
 sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp
-         exporters/src/fold_export.cpp wasm/bindings.cpp)
+         exporters/src/fold_export.cpp exporters/src/gltf_export.cpp exporters/src/keyframes.cpp
+         exporters/src/panel_tree.cpp wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
 pids=()
 jobs="$(nproc)"

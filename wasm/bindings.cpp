@@ -8,6 +8,7 @@
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
+#include "phedra/gltf_export.h"
 #include "phedra/preset.h"
 #include "phedra/self_intersection.h"
 
@@ -180,6 +181,22 @@ class Designer {
     return v;
   }
 
+  /// The animated .glb of the design, as `phedra generate -o X.glb` writes it
+  /// (`morph`: morph targets instead of a node per panel; `cycle`: the whole
+  /// configuration curve). A view into the module's memory: copy it at once.
+  val glb(bool morph, bool cycle) {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      GltfOptions options;
+      options.morph = morph;
+      options.cycle = cycle;
+      glb_ = gltf_bytes(*design_, options);
+    } catch (const Error& e) {
+      return failure("", e.what());
+    }
+    return val(emscripten::typed_memory_view(glb_.size(), reinterpret_cast<const std::uint8_t*>(glb_.data())));
+  }
+
   /// FOLD text with `count` frames over the flexion interval (as `phedra generate -o X.fold --count N`).
   std::string fold(int count) const {
     if (!design_) return "";
@@ -198,6 +215,7 @@ class Designer {
   std::vector<double> positions_;
   std::vector<std::uint32_t> faces_;
   std::vector<double> apexes_;
+  std::string glb_;
 };
 
 }  // namespace
@@ -213,5 +231,6 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("evaluate", &Designer::evaluate)
       .function("apexes", &Designer::apexes)
       .function("check", &Designer::check)
+      .function("glb", &Designer::glb)
       .function("fold", &Designer::fold);
 }

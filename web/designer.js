@@ -5,7 +5,6 @@
 // CLI's, and a saved preset gives the same `phedra sample` result.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { GLTFExporter } from 'three/addons/exporters/GLTFExporter.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -437,10 +436,13 @@ $('load').addEventListener('change', async (e) => {
     showMessage();
   }
 });
-async function glbBytes() {
-  return new GLTFExporter().parseAsync(surface, { binary: true });
+/// The animated .glb, written by the core as `phedra generate -o X.glb` writes it.
+function glbBytes() {
+  const bytes = designer.glb(false, false);
+  if (bytes.ok === false) throw new Error(bytes.message);
+  return Uint8Array.from(bytes);
 }
-$('export-glb').addEventListener('click', async () => download(`${preset.name || 'phedra'}.glb`, await glbBytes(), 'model/gltf-binary'));
+$('export-glb').addEventListener('click', () => download(`${preset.name || 'phedra'}.glb`, glbBytes(), 'model/gltf-binary'));
 $('export-fold').addEventListener('click', () => download(`${preset.name || 'phedra'}.fold`, designer.fold(41), 'application/json'));
 
 // --- start -----------------------------------------------------------------
@@ -498,7 +500,7 @@ window.phedraDesigner = {
   },
   apply: (p) => apply(p),
   figures: () => figures,
-  glbSize: async () => (await glbBytes()).byteLength,
+  glbSize: () => glbBytes().byteLength,
   fold: () => designer.fold(5),
   /// Times `runs` edits of trajectory point 1 (rebuild from the preset, evaluate,
   /// upload, render): milliseconds, median and worst, core alone and in all.

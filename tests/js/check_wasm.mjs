@@ -87,6 +87,32 @@ function checkPreset(name) {
   console.log(`ok ${name}: ${info.kind}, ${info.vertices} vertices, largest difference ${worst} (${worstAtLimits} at the limits)`);
 }
 
+// Animated .glb written in the browser core: valid for the Khronos validator, and
+// the same nodes, meshes and keyframe count as `phedra generate` (both
+// representations, and the configuration curve).
+const validator = createRequire(path.join(top, "web/package.json"))("gltf-validator");
+const { mkdtempSync, rmSync } = await import("node:fs");
+const scratch = mkdtempSync(path.join((await import("node:os")).tmpdir(), "phedra-wasm-"));
+for (const [name, morph, cycle] of [["default.json", false, false], ["grid-3x3.json", true, false], ["helix-tube.json", false, true]]) {
+  const file = path.join(top, "presets", name);
+  designer.load(readFileSync(file, "utf8"));
+  const bytes = Uint8Array.from(designer.glb(morph, cycle));
+  const report = await validator.validateBytes(bytes, { uri: "page.glb", externalResourceFunction: () => Promise.reject(new Error("none")) });
+  if (report.issues.numErrors || report.issues.numWarnings) fail(`${name}: the page's .glb has ${report.issues.numErrors} errors`);
+  const cliFile = path.join(scratch, "cli.glb");
+  run(["generate", file, "-o", cliFile, "-q", ...(morph ? ["--morph"] : []), ...(cycle ? ["--cycle"] : [])]);
+  const json = (b) => {
+    const length = new DataView(b.buffer, b.byteOffset).getUint32(12, true);
+    return JSON.parse(new TextDecoder().decode(b.subarray(20, 20 + length)));
+  };
+  const page = json(bytes), cli = json(new Uint8Array(readFileSync(cliFile)));
+  const keys = (g) => g.asset.extras.phedra.keyframe_t.length;
+  if (page.nodes.length !== cli.nodes.length || page.meshes.length !== cli.meshes.length) fail(`${name}: .glb structure differs`);
+  if (Math.abs(keys(page) - keys(cli)) > 2) fail(`${name}: ${keys(page)} keyframes in the page, ${keys(cli)} from the command`);
+  console.log(`ok ${name} .glb${morph ? " (morph)" : ""}${cycle ? " (cycle)" : ""}: ${bytes.length} bytes, ${keys(page)} keyframes (command: ${keys(cli)}), valid`);
+}
+rmSync(scratch, { recursive: true, force: true });
+
 // Every bad preset of the robustness suite: the CLI's field and message.
 const expected = readFileSync(path.join(top, "tests/data/bad/expected.tsv"), "utf8").trim().split("\n");
 let bad = 0;
