@@ -4,28 +4,16 @@
 // design from the preset exactly as `phedra` does, so the messages are the
 // CLI's, and a saved preset gives the same `phedra sample` result.
 import * as THREE from 'three';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { createStage } from './scene.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
 const format = (x) => (Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : x.toFixed(4));
 
 // --- three.js scene --------------------------------------------------------
-const container = $('view');
 // No MSAA: it costs more than the whole motion update in a software-rendered browser.
-const renderer = new THREE.WebGLRenderer({ antialias: false, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-renderer.setSize(container.clientWidth, container.clientHeight);
-container.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x1d2127);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.0));
-const sun = new THREE.DirectionalLight(0xffffff, 1.5);
-sun.position.set(3, 5, 4);
-scene.add(sun);
-const camera = new THREE.PerspectiveCamera(45, container.clientWidth / container.clientHeight, 0.01, 1000);
+const { renderer, scene, camera, controls } = createStage({ antialias: false });
 camera.up.set(0, 0, 1);  // presets are z-up
-const controls = new OrbitControls(camera, renderer.domElement);
 
 const surface = new THREE.Mesh(new THREE.BufferGeometry(),
   new THREE.MeshStandardMaterial({ color: 0x7fb3e0, side: THREE.DoubleSide, flatShading: true, roughness: 0.8 }));
@@ -456,12 +444,6 @@ function frame() {
   renderer.render(scene, camera);
   requestAnimationFrame(frame);
 }
-
-window.addEventListener('resize', () => {
-  renderer.setSize(container.clientWidth, container.clientHeight);
-  camera.aspect = container.clientWidth / container.clientHeight;
-  camera.updateProjectionMatrix();
-});
 
 const initial = await (await fetch('/preset.json')).json();
 if (!apply(initial)) {

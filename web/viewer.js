@@ -3,22 +3,10 @@
 // the glTF time mapped back through the export's extras (keyframe_t, seconds).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
+import { createStage } from './scene.js';
 
 const $ = (id) => document.getElementById(id);
-const container = $('view');
-const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
-renderer.setPixelRatio(window.devicePixelRatio);
-renderer.setSize(container.clientWidth, container.clientHeight);
-container.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0x1d2127);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x445566, 2.0));
-const sun = new THREE.DirectionalLight(0xffffff, 1.5);
-sun.position.set(3, 5, 4);
-scene.add(sun);
-const camera = new THREE.PerspectiveCamera(45, container.clientWidth / container.clientHeight, 0.01, 1000);
-const controls = new OrbitControls(camera, renderer.domElement);
+const { renderer, scene, camera, controls } = createStage();
 
 const format = (x) => (Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(3) : x.toFixed(4));
 let mixer = null, duration = 0, playing = true, info = null, times = [];
@@ -96,12 +84,6 @@ renderer.setAnimationLoop(() => {
   controls.update();
   renderer.render(scene, camera);
 });
-window.addEventListener('resize', () => {
-  camera.aspect = container.clientWidth / container.clientHeight;
-  camera.updateProjectionMatrix();
-  renderer.setSize(container.clientWidth, container.clientHeight);
-});
-
 // For tests and scripts: the world position of a panel corner, and the state.
 window.phedraViewer = {
   ready: false,

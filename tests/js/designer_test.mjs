@@ -5,32 +5,19 @@
 // .glb and FOLD, and time drag steps of a 10^4-vertex model (printed: the figure
 // of docs/performance.md, not a pass/fail criterion).
 // usage: node tests/js/designer_test.mjs PHEDRA_BINARY PRESET SCREENSHOT.png
-import { createRequire } from 'node:module';
-import { execFileSync, spawn } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
+import { canvasColours, launch, serve } from './browser.mjs';
 
-const require = createRequire(new URL('../../web/package.json', import.meta.url));
-const { chromium } = require('playwright-core');
 const [phedra, preset, screenshot] = process.argv.slice(2);
 const scratch = mkdtempSync(path.join(tmpdir(), 'phedra-designer-'));
-
-const server = spawn(phedra, ['view', preset, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const address = await new Promise((resolve, reject) => {
-  let text = '';
-  server.stdout.on('data', (d) => { text += d; const m = text.match(/http:\/\/127\.0\.0\.1:\d+\/designer\.html/); if (m) resolve(m[0]); });
-  server.on('exit', (code) => reject(new Error(`phedra view exited with ${code}`)));
-  setTimeout(() => reject(new Error('phedra view printed no address')), 10000);
-});
+const { server, address } = await serve(phedra, preset, /http:\/\/127\.0\.0\.1:\d+\/designer\.html/);
 
 const failures = [];
 const check = (ok, what) => { if (!ok) failures.push(what); };
-const browser = await chromium.launch({
-  executablePath: '/usr/bin/chromium',
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const browser = await launch();
 try {
   const page = await browser.newPage({ viewport: { width: 1100, height: 760 }, acceptDownloads: true });
   const errors = [];
@@ -42,17 +29,7 @@ try {
   const api = (f, ...args) => page.evaluate(f, ...args);
 
   // Rendered: the canvas holds more than the background.
-  const colours = await api(() => {
-    const source = document.querySelector('#view canvas');
-    const copy = document.createElement('canvas');
-    copy.width = 200; copy.height = 140;
-    const g = copy.getContext('2d');
-    g.drawImage(source, 0, 0, copy.width, copy.height);
-    const data = g.getImageData(0, 0, copy.width, copy.height).data;
-    const seen = new Set();
-    for (let i = 0; i < data.length; i += 4) seen.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | (data[i + 2] >> 3));
-    return seen.size;
-  });
+  const colours = await canvasColours(page);
   check(colours >= 10, `the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
 
@@ -91,7 +68,7 @@ try {
     const p = JSON.parse(readFileSync(preset, 'utf8'));
     p.directions[2] = [0, 0, 1];
     const file = path.join(scratch, 'broken.json');
-    require('node:fs').writeFileSync(file, JSON.stringify(p));
+    writeFileSync(file, JSON.stringify(p));
     try { execFileSync(phedra, ['info', file], { stdio: ['ignore', 'pipe', 'pipe'] }); return ''; } catch (e) { return String(e.stderr); }
   })();
   check(message.startsWith('directions[2]: '), `the broken direction gave "${message}"`);

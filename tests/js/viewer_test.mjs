@@ -2,27 +2,13 @@
 // by playwright-core): the model renders (the canvas is not blank), no console
 // errors, and moving the slider changes the pose and the shown t.
 // usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png
-import { createRequire } from 'node:module';
-import { spawn } from 'node:child_process';
+import { canvasColours, launch, serve } from './browser.mjs';
 
-const require = createRequire(new URL('../../web/package.json', import.meta.url));
-const { chromium } = require('playwright-core');
 const [phedra, glb, screenshot] = process.argv.slice(2);
-
-const server = spawn(phedra, ['view', glb, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-const address = await new Promise((resolve, reject) => {
-  let text = '';
-  server.stdout.on('data', (d) => { text += d; const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//); if (m) resolve(m[0]); });
-  server.on('exit', (code) => reject(new Error(`phedra view exited with ${code}`)));
-  setTimeout(() => reject(new Error('phedra view printed no address')), 10000);
-});
+const { server, address } = await serve(phedra, glb, /http:\/\/127\.0\.0\.1:\d+\//);
 
 const failures = [];
-const browser = await chromium.launch({
-  executablePath: '/usr/bin/chromium',
-  args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-         '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
-});
+const browser = await launch();
 try {
   const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
   const errors = [];
@@ -33,17 +19,7 @@ try {
   await page.evaluate(() => window.phedraViewer.pause());
   await page.waitForTimeout(300);
   // Rendered: the WebGL canvas holds more than the background colour.
-  const colours = await page.evaluate(() => {
-    const source = document.querySelector('#view canvas');
-    const copy = document.createElement('canvas');
-    copy.width = 200; copy.height = 140;
-    const g = copy.getContext('2d');
-    g.drawImage(source, 0, 0, copy.width, copy.height);
-    const data = g.getImageData(0, 0, copy.width, copy.height).data;
-    const seen = new Set();
-    for (let i = 0; i < data.length; i += 4) seen.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | (data[i + 2] >> 3));
-    return seen.size;
-  });
+  const colours = await canvasColours(page);
   if (colours < 10) failures.push(`the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
   // The slider moves the model.
