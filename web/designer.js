@@ -77,6 +77,8 @@ function rebuildGeometry() {
   lineGeometry.setIndex(lines);
   edges.geometry.dispose();
   edges.geometry = lineGeometry;
+  // Panel outlines help on small models and only cost drawing time on large ones.
+  edges.visible = count <= 5000;
   updatePositions();
 }
 
