@@ -18,3 +18,4 @@ echo
 ./build/bin/phedra check "$preset"
 echo
 echo "Watch it fold: ./build/bin/phedra view out/$name.glb  (then open the printed address)"
+echo "Design it in the browser: bash scripts/build-wasm.sh && ./build/bin/phedra view $preset"
