@@ -49,36 +49,56 @@ class Designer {
     }
   }
 
-  /// An edit while dragging, without the round trip through JSON text: sets
-  /// trajectory[i] or directions[i] (key) to (x, y, z), or apex_heights[i] /
-  /// tube.apex_heights[i] (key) to x, and rebuilds. Refused: the previous design
-  /// and preset stay.
+  /// An edit while dragging, without the round trip through JSON text. `key` is a
+  /// path of member names and array indices joined by dots ("trajectory",
+  /// "tube.apex_heights", "grid.u_heights", "couplings.2.free_heights"): sets entry
+  /// `index` of the list there to (x, y, z) (trajectory, directions) or to x (heights),
+  /// or with index -1 the number there to x ("couplings.1.free_height"), and rebuilds.
+  /// Refused: the previous design and preset stay.
   val set(const std::string& key, int index, double x, double y, double z) {
     if (!design_) return failure("", "no design loaded");
-    nlohmann::json* list = nullptr;
-    if (key == "tube.apex_heights") {
-      if (document_.contains("tube") && document_["tube"].contains("apex_heights")) list = &document_["tube"]["apex_heights"];
-    } else if (document_.contains(key)) {
-      list = &document_[key];
+    nlohmann::json* target = at_path(key);
+    nlohmann::json* entry = nullptr;
+    if (target && target->is_array() && index >= 0 && static_cast<std::size_t>(index) < target->size()) {
+      entry = &(*target)[static_cast<std::size_t>(index)];
+    } else if (target && target->is_number() && index == -1) {
+      entry = target;
     }
-    if (!list || !list->is_array() || index < 0 || static_cast<std::size_t>(index) >= list->size()) {
-      return failure(key, "no such entry " + std::to_string(index));
-    }
-    nlohmann::json& entry = (*list)[static_cast<std::size_t>(index)];
-    const nlohmann::json previous = entry;
-    entry = key == "trajectory" || key == "directions" ? nlohmann::json::array({x, y, z}) : nlohmann::json(x);
+    if (!entry) return failure(key, "no such entry " + std::to_string(index));
+    const nlohmann::json previous = *entry;
+    *entry = entry->is_array() ? nlohmann::json::array({x, y, z}) : nlohmann::json(x);
     try {
       return build(document_);
     } catch (const InvalidInputError& e) {
-      entry = previous;
+      *entry = previous;
       return failure(e.field(), e.reason());
     } catch (const Error& e) {
-      entry = previous;
+      *entry = previous;
       return failure("", e.what());
     }
   }
 
  private:
+  /// The value at a dotted path of the preset (see set), or null.
+  nlohmann::json* at_path(const std::string& key) {
+    nlohmann::json* node = &document_;
+    std::size_t start = 0;
+    while (node && start <= key.size()) {
+      const std::size_t end = std::min(key.find('.', start), key.size());
+      const std::string part = key.substr(start, end - start);
+      const bool numeric = !part.empty() && part.size() < 10 && part.find_first_not_of("0123456789") == std::string::npos;
+      if (node->is_object() && node->contains(part)) {
+        node = &(*node)[part];
+      } else if (node->is_array() && numeric && std::stoul(part) < node->size()) {
+        node = &(*node)[std::stoul(part)];
+      } else {
+        node = nullptr;
+      }
+      start = end + 1;
+    }
+    return node;
+  }
+
   val build(const nlohmann::json& document) {
     {
       Design design = design_from_json(document);

@@ -16,13 +16,21 @@ const { renderer, scene, camera, controls } = createStage({ antialias: false });
 camera.up.set(0, 0, 1);  // presets are z-up
 
 const surface = new THREE.Mesh(new THREE.BufferGeometry(),
-  new THREE.MeshStandardMaterial({ color: 0x7fb3e0, side: THREE.DoubleSide, flatShading: true, roughness: 0.8 }));
+  // Lambert: the matte look of a rough standard material at a fraction of its cost per pixel.
+  new THREE.MeshLambertMaterial({ color: 0x7fb3e0, side: THREE.DoubleSide, flatShading: true }));
 const edges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x20303f }));
 scene.add(surface, edges);
 const handles = new THREE.Group();
 scene.add(handles);
 const axisLine = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineDashedMaterial({ color: 0x66bb6a, dashSize: 0.1, gapSize: 0.06 }));
 scene.add(axisLine);
+
+// Drawn on demand: a frame is rendered only after something changed (an edit, the
+// slider, the camera, the window), so an idle page costs nothing.
+let needsRender = true;
+const requestRender = () => { needsRender = true; };
+controls.addEventListener('change', requestRender);
+window.addEventListener('resize', requestRender);
 
 // --- the core --------------------------------------------------------------
 const core = await createPhedra();
@@ -50,8 +58,9 @@ function apply(candidate, { keepFigures = false } = {}) {
   preset = candidate;
   info = designer.info();
   faces = Uint32Array.from(designer.faces());
+  sizeHandles();
   rebuildGeometry();
-  rebuildHandles();
+  placeHandles();
   updatePanel();
   if (!keepFigures) scheduleFigures();
   showMessage();
@@ -93,81 +102,198 @@ function updatePositions() {
   // (flat shading: the shader derives the normals, none to compute)
   surface.geometry.computeBoundingSphere();
   $('t').textContent = format(t);
+  requestRender();
 }
 
 // --- handles ---------------------------------------------------------------
-const handleSize = () => 0.025 * info.model_size;
-const materials = {
-  trajectory: new THREE.MeshStandardMaterial({ color: 0xff9800 }),
-  direction: new THREE.MeshStandardMaterial({ color: 0x42a5f5 }),
-  apex: new THREE.MeshStandardMaterial({ color: 0x66bb6a }),
-};
+// One instanced mesh a kind (a draw call each, however many profiles) and one
+// line set for the direction stems: a drag moves instances, it creates nothing.
+// A fortieth of the model, smaller where the profiles are closer (a handle a profile).
+let handleSize = () => 0.025 * info.model_size;
 
-function apexHeights(p) {
-  if (Array.isArray(p.apex_heights)) return { list: p.apex_heights, owner: p, key: 'apex_heights', field: 'apex_heights' };
-  if (p.tube && Array.isArray(p.tube.apex_heights)) return { list: p.tube.apex_heights, owner: p.tube, key: 'apex_heights', field: 'tube.apex_heights' };
+/// Sizes the handles for the shown preset: at most a third of the median trajectory segment.
+function sizeHandles() {
+  const t = Array.isArray(preset.trajectory) ? preset.trajectory : [];
+  const lengths = t.slice(1).map((v, i) => Math.hypot(...v.map((x, k) => x - t[i][k]))).sort((a, b) => a - b);
+  const spacing = lengths.length ? lengths[lengths.length >> 1] / 3 : Infinity;
+  const size = Math.min(0.025 * info.model_size, spacing);
+  handleSize = () => size;
+}
+const handleKinds = ['trajectory', 'direction', 'apex'];
+const handleColours = { trajectory: 0xff9800, direction: 0x42a5f5, apex: 0x66bb6a };
+const arrayHeightColour = 0xba68c8;  // heights of further members (grid, row, couplings)
+// kind -> THREE.InstancedMesh; userData.refs[instance] = {key, index}: what Designer.set edits
+const handleMeshes = {};
+const stems = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x42a5f5 }));
+handles.add(stems);
+
+/// The apex heights of the base member (open P-hedron or tube), or null (grid).
+function baseHeights(p) {
+  if (Array.isArray(p.apex_heights)) return p.apex_heights;
+  if (p.tube && Array.isArray(p.tube.apex_heights)) return p.tube.apex_heights;
   return null;
 }
 
-function rebuildHandles() {
-  handles.clear();
-  const size = handleSize();
-  const sphere = new THREE.SphereGeometry(size, 16, 12);
-  const cube = new THREE.BoxGeometry(1.4 * size, 1.4 * size, 1.4 * size);
-  if (Array.isArray(preset.trajectory)) {
-    preset.trajectory.forEach((v, i) => {
-      const h = new THREE.Mesh(sphere, materials.trajectory);
-      h.position.set(...v);
-      h.userData = { kind: 'trajectory', index: i };
-      handles.add(h);
+/// Every height of the preset, an axis coordinate each: [{key, index, value, base}]
+/// (`key` a dotted path for Designer.set; index -1: the number itself).
+function heightRefs(p) {
+  const refs = [];
+  const list = (key, values, base) => {
+    if (Array.isArray(values)) values.forEach((value, index) => { if (typeof value === 'number') refs.push({ key, index, value, base }); });
+  };
+  list('apex_heights', p.apex_heights, true);
+  if (p.tube) list('tube.apex_heights', p.tube.apex_heights, true);
+  if (p.grid) {
+    list('grid.u_heights', p.grid.u_heights, false);
+    list('grid.w_heights', p.grid.w_heights, false);
+  }
+  if (p.row) list('row.free_heights', p.row.free_heights, false);
+  if (Array.isArray(p.couplings)) {
+    p.couplings.forEach((c, k) => {
+      if (!c || typeof c !== 'object') return;
+      list(`couplings.${k}.free_heights`, c.free_heights, false);
+      if (typeof c.free_height === 'number') refs.push({ key: `couplings.${k}.free_height`, index: -1, value: c.free_height, base: false });
     });
   }
-  if (Array.isArray(preset.directions) && Array.isArray(preset.trajectory)) {
+  return refs;
+}
+
+/// The preset's field name of a handle, as the core's messages write it: "grid.u_heights[2]".
+const fieldOf = (ref) => ref.key.replace(/\.(\d+)/g, '[$1]') + (ref.index >= 0 ? `[${ref.index}]` : '');
+
+/// Sets what handle `ref` edits in preset `p` (the value the core accepted).
+function setAt(p, ref, value) {
+  const parts = ref.key.split('.');
+  if (ref.index < 0) {
+    const last = parts.pop();
+    parts.reduce((o, k) => o[k], p)[last] = value;
+  } else {
+    parts.reduce((o, k) => o[k], p)[ref.index] = value;
+  }
+}
+
+/// Where every handle is: {kind: [{key, index, position, colour}]}, the direction stems, and the apex line.
+function handlePlaces() {
+  const places = { trajectory: [], direction: [], apex: [] };
+  const stemPoints = [];
+  const trajectory = Array.isArray(preset.trajectory) ? preset.trajectory : [];
+  trajectory.forEach((v, i) => places.trajectory.push({ key: 'trajectory', index: i, position: new THREE.Vector3(...v) }));
+  if (Array.isArray(preset.directions)) {
     preset.directions.forEach((d, i) => {
       const dir = new THREE.Vector3(...d);
-      if (dir.lengthSq() === 0 || !preset.trajectory[i]) return;
-      const h = new THREE.Mesh(cube, materials.direction);
-      h.position.set(...preset.trajectory[i]).addScaledVector(dir.normalize(), 0.12 * info.model_size);
-      h.userData = { kind: 'direction', index: i };
-      handles.add(h);
-      const line = new THREE.Line(new THREE.BufferGeometry().setFromPoints([new THREE.Vector3(...preset.trajectory[i]), h.position.clone()]),
-        new THREE.LineBasicMaterial({ color: 0x42a5f5 }));
-      handles.add(line);
+      if (dir.lengthSq() === 0 || !trajectory[i]) return;
+      const foot = new THREE.Vector3(...trajectory[i]);
+      const position = foot.clone().addScaledVector(dir.normalize(), 0.12 * info.model_size);
+      places.direction.push({ key: 'directions', index: i, position });
+      stemPoints.push(foot, position);
     });
   }
-  const apexes = Float64Array.from(designer.apexes(info.t_star));
-  const heights = apexHeights(preset);
-  const points = [];
-  for (let j = 0; j < apexes.length / 3; ++j) points.push(new THREE.Vector3(apexes[3 * j], apexes[3 * j + 1], apexes[3 * j + 2]));
-  if (heights) {
-    heights.list.forEach((_, j) => {
-      if (!points[j]) return;
-      const h = new THREE.Mesh(sphere, materials.apex);
-      h.position.copy(points[j]);
-      h.userData = { kind: 'apex', index: j };
-      handles.add(h);
-    });
+  // Every height is an axis coordinate on the apex line, which the apexes of the base show.
+  const apexes = designer.apexes(info.t_star);
+  const a = axisOf(preset);
+  const first = apexes.length >= 3 ? new THREE.Vector3(apexes[0], apexes[1], apexes[2]) : null;
+  const foot = first ? first.clone().addScaledVector(a, -first.dot(a)) : null;
+  const heights = [];
+  if (foot) {
+    for (const ref of heightRefs(preset)) {
+      places.apex.push({ key: ref.key, index: ref.index, position: foot.clone().addScaledVector(a, ref.value),
+                         colour: ref.base ? handleColours.apex : arrayHeightColour });
+      heights.push(ref.value);
+    }
+    for (let j = 0; j < apexes.length / 3; ++j) heights.push(new THREE.Vector3(apexes[3 * j], apexes[3 * j + 1], apexes[3 * j + 2]).dot(a));
   }
-  if (points.length >= 2) {
-    const a = axisOf(preset);
-    const lo = Math.min(...points.map((p) => p.dot(a))), hi = Math.max(...points.map((p) => p.dot(a)));
-    const base = points[0].clone().addScaledVector(a, -points[0].dot(a));
+  return { places, stemPoints, apexLine: foot ? { foot, axis: a, lo: Math.min(...heights), hi: Math.max(...heights) } : null };
+}
+
+function handleGeometry(kind, count) {
+  // Many handles (a handle a profile of a long model) are drawn as octahedra: 8
+  // triangles each instead of 192 (what a software renderer pays for the most).
+  if (count > 200) return new THREE.OctahedronGeometry(kind === 'direction' ? 1.2 : 1);
+  return kind === 'direction' ? new THREE.BoxGeometry(1.4, 1.4, 1.4) : new THREE.SphereGeometry(1, 16, 12);
+}
+
+/// Puts the handles where the preset says; rebuilds an instanced mesh only when its count changes.
+function placeHandles() {
+  const { places, stemPoints, apexLine } = handlePlaces();
+  const size = handleSize();
+  const matrix = new THREE.Matrix4();
+  const colour = new THREE.Color();
+  for (const kind of handleKinds) {
+    const list = places[kind];
+    let mesh = handleMeshes[kind];
+    if (!mesh || mesh.count !== list.length) {
+      if (mesh) {
+        handles.remove(mesh);
+        mesh.geometry.dispose();
+        mesh.dispose();
+      }
+      const material = new THREE.MeshStandardMaterial({ color: kind === 'apex' ? 0xffffff : handleColours[kind] });
+      mesh = new THREE.InstancedMesh(handleGeometry(kind, list.length), material, list.length);
+      mesh.userData.kind = kind;
+      handleMeshes[kind] = mesh;
+      handles.add(mesh);
+    }
+    mesh.userData.refs = list.map((h) => ({ key: h.key, index: h.index }));
+    list.forEach((h, k) => {
+      mesh.setMatrixAt(k, matrix.makeScale(size, size, size).setPosition(h.position));
+      if (h.colour !== undefined) mesh.setColorAt(k, colour.setHex(h.colour));
+    });
+    mesh.instanceMatrix.needsUpdate = true;
+    requestRender();
+    if (mesh.instanceColor) mesh.instanceColor.needsUpdate = true;
+    mesh.computeBoundingSphere();
+  }
+  const stemPositions = stems.geometry.getAttribute('position');
+  if (!stemPositions || stemPositions.count !== stemPoints.length) {
+    stems.geometry.dispose();
+    stems.geometry = new THREE.BufferGeometry().setFromPoints(stemPoints);
+  } else {
+    stemPoints.forEach((p, k) => stemPositions.setXYZ(k, p.x, p.y, p.z));
+    stemPositions.needsUpdate = true;
+    stems.geometry.computeBoundingSphere();
+  }
+  if (apexLine) {
+    const { foot, axis, lo, hi } = apexLine;
     axisLine.geometry.dispose();
-    axisLine.geometry = new THREE.BufferGeometry().setFromPoints([base.clone().addScaledVector(a, lo - 0.2 * info.model_size),
-                                                                  base.clone().addScaledVector(a, hi + 0.2 * info.model_size)]);
+    axisLine.geometry = new THREE.BufferGeometry().setFromPoints([foot.clone().addScaledVector(axis, lo - 0.2 * info.model_size),
+                                                                  foot.clone().addScaledVector(axis, hi + 0.2 * info.model_size)]);
     axisLine.computeLineDistances();
   }
 }
 
-function handleOf(field) {
-  const m = /^(trajectory|directions|apex_heights|tube\.apex_heights)\[(\d+)\]/.exec(field || '');
-  if (!m) return null;
-  const kind = m[1] === 'trajectory' ? 'trajectory' : m[1] === 'directions' ? 'direction' : 'apex';
-  return handles.children.find((h) => h.userData.kind === kind && h.userData.index === Number(m[2])) || null;
+/// The handle that edits `key` (a Designer.set path) entry `index`: {kind, instance} or null.
+function findHandle(key, index) {
+  for (const kind of handleKinds) {
+    const mesh = handleMeshes[kind];
+    const k = mesh ? mesh.userData.refs.findIndex((r) => r.key === key && r.index === index) : -1;
+    if (k >= 0) return { kind, instance: k };
+  }
+  return null;
 }
 
-function screenOf(object) {
-  const p = object.getWorldPosition(new THREE.Vector3()).project(camera);
+/// The position of the handle that edits `key` entry `index`, or null.
+function handlePosition(key, index) {
+  const found = findHandle(key, index);
+  if (!found) return null;
+  const matrix = new THREE.Matrix4();
+  handleMeshes[found.kind].getMatrixAt(found.instance, matrix);
+  return new THREE.Vector3().setFromMatrixPosition(matrix);
+}
+
+/// The position of the handle a message of the core names ("directions[2]: ..."), or null.
+function handleOf(field) {
+  if (!field) return null;
+  for (const kind of handleKinds) {
+    for (const ref of handleMeshes[kind]?.userData.refs ?? []) {
+      const f = fieldOf(ref);
+      if (field === f || field.startsWith(f + '.') || field.startsWith(f + '[') || field.startsWith(f + ',')) return handlePosition(ref.key, ref.index);
+    }
+  }
+  return null;
+}
+
+function screenOf(position) {
+  const p = position.clone().project(camera);
   const rect = renderer.domElement.getBoundingClientRect();
   return [rect.left + (p.x + 1) / 2 * rect.width, rect.top + (1 - p.y) / 2 * rect.height];
 }
@@ -196,7 +322,8 @@ function showMessage() {
   }
 }
 
-function updatePanel() {
+/// The figures of the design: name, kind, counts, the interval and t*.
+function updateLabels() {
   $('title').textContent = info.name;
   $('kind').textContent = `${info.kind}, ${info.vertices} vertices, ${info.faces} panels`;
   $('lo').textContent = format(info.t_lambda);
@@ -204,12 +331,22 @@ function updatePanel() {
   $('tstar').textContent = format(info.t_star);
   const star = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
   $('tstarmark').style.marginLeft = `${Math.round(star * 100 - 50)}%`;
+}
+
+/// Everything the panel shows: the labels, the preset's text, mode and signs.
+function updatePanel() {
+  updateLabels();
   $('json').value = JSON.stringify(preset, null, 2);
-  $('mode').value = preset.grid ? 'grid' : preset.tube ? preset.tube.type : 'open';
+  $('mode').value = modeOf(preset);
   $('grid-size').hidden = !preset.grid;
   if (preset.grid) {
     $('cells-u').value = String(preset.grid.u_heights.length - 1);
     $('cells-w').value = String(preset.grid.w_heights.length - 1);
+  }
+  $('row-size').hidden = !preset.row;
+  if (preset.row) {
+    $('row-cells').value = String(preset.row.free_heights.length);
+    $('row-side').value = String(preset.row.side);
   }
   const signs = $('signs');
   signs.textContent = '';
@@ -256,10 +393,11 @@ function rayAt(event) {
 
 renderer.domElement.addEventListener('pointerdown', (event) => {
   rayAt(event);
-  const hit = raycaster.intersectObjects(handles.children.filter((h) => h.isMesh), false)[0];
+  const hit = raycaster.intersectObjects(Object.values(handleMeshes), false)[0];
   if (!hit) return;
+  const { key, index } = hit.object.userData.refs[hit.instanceId];
   const normal = camera.getWorldDirection(new THREE.Vector3());
-  drag = { ...hit.object.userData, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, hit.object.position) };
+  drag = { kind: hit.object.userData.kind, key, index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, handlePosition(key, index)) };
   controls.enabled = false;
   renderer.domElement.setPointerCapture(event.pointerId);
 });
@@ -279,7 +417,7 @@ renderer.domElement.addEventListener('pointerup', () => {
     applyEdit(pending);
     pending = null;
   }
-  scheduleFigures();
+  settle();
 });
 
 /// The edit that puts the dragged handle at `point`: {key, index, value}.
@@ -292,7 +430,7 @@ function edited(handle, point) {
     return { key: 'directions', index: handle.index, value: d.toArray() };
   }
   // The height is the coordinate along the axis.
-  return { key: apexHeights(preset).field, index: handle.index, value: [point.dot(a), 0, 0] };
+  return { key: handle.key, index: handle.index, value: [point.dot(a), 0, 0] };
 }
 
 /// Applies one edit through the core without the round trip through JSON text
@@ -305,14 +443,20 @@ function applyEdit(edit) {
     return false;
   }
   failure = null;
-  if (edit.key === 'trajectory' || edit.key === 'directions') preset[edit.key][edit.index] = edit.value;
-  else apexHeights(preset).list[edit.index] = edit.value[0];
+  setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
   info = designer.info();
   updatePositions();
-  rebuildHandles();
-  updatePanel();
+  placeHandles();
+  updateLabels();
   showMessage();
   return true;
+}
+
+/// Once a drag ends: the preset's text and the check figures follow (both cost
+/// more than a drag step on a large model, so they wait for the hand to stop).
+function settle() {
+  $('json').value = JSON.stringify(preset, null, 2);
+  scheduleFigures();
 }
 
 // --- controls --------------------------------------------------------------
@@ -320,6 +464,17 @@ $('slider').addEventListener('input', (e) => {
   fraction = Number(e.target.value) / 1000;
   updatePositions();
 });
+
+/// The mode a preset is in (the mode selector's value).
+const modeOf = (p) => (p.grid ? 'grid' : p.row ? 'row' : p.tube ? p.tube.type : 'open');
+
+/// A row of `cells` face-coupled cells on `side` of the tube with apexes z: the
+/// new cell shares the tube's line z[side + 1]; the far lines keep the spacing
+/// of that family (z[side + 1] - z[side + 3]).
+function rowOf(z, cells, side) {
+  const near = z[(side + 1) % 4], step = near - z[(side + 3) % 4];
+  return { side, free_heights: Array.from({ length: cells }, (_, k) => near + (k + 1) * step) };
+}
 
 /// Grid heights: cell (0, 0) has apexes (z0, z1, z2, z3); every further line of a
 /// family keeps the spacing of the first two.
@@ -330,8 +485,8 @@ function gridHeights(z, cellsU, cellsW) {
 
 function cellZ(p) {
   if (p.grid) return [p.grid.u_heights[0], p.grid.w_heights[0], p.grid.u_heights[1], p.grid.w_heights[1]];
-  const heights = apexHeights(p);
-  return heights ? heights.list.slice() : [-1.5, 1.0, -0.5, 2.0];
+  const heights = baseHeights(p);
+  return heights ? heights.slice() : [-1.5, 1.0, -0.5, 2.0];
 }
 
 for (const id of ['cells-u', 'cells-w']) {
@@ -343,10 +498,20 @@ for (const id of ['cells-u', 'cells-w']) {
   });
 }
 
+for (const id of ['row-cells', 'row-side']) {
+  $(id).addEventListener('change', () => {
+    if (!preset.row || !preset.tube) return;
+    const c = clone(preset);
+    c.row = rowOf(c.tube.apex_heights, Math.max(1, Number($('row-cells').value)), Number($('row-side').value));
+    apply(c);
+  });
+}
+
 $('mode').addEventListener('change', (e) => {
   const c = clone(preset);
   const z = cellZ(c);
   delete c.grid;
+  delete c.row;
   if (e.target.value === 'grid') {
     delete c.apex_heights;
     delete c.signs;
@@ -354,6 +519,7 @@ $('mode').addEventListener('change', (e) => {
     c.grid = gridHeights(z, Math.max(1, Number($('cells-u').value)), Math.max(1, Number($('cells-w').value)));
   } else if (e.target.value === 'open') {
     delete c.tube;
+    delete c.couplings;  // they attach to tubes
     c.apex_heights = z.length >= 5 ? z : [...z.slice(0, 4), z[0] + 1.3];
     c.signs = '+'.repeat(c.apex_heights.length - 2);
   } else {
@@ -362,9 +528,11 @@ $('mode').addEventListener('change', (e) => {
     const q = z.slice(0, 4);
     while (q.length < 4) q.push(q[q.length - 1] + 1);
     if (e.target.value === 'anti-parallelogram') q[3] = q[0] + q[2] - q[1];  // its symmetry condition
-    c.tube = { type: e.target.value, apex_heights: q };
+    const row = e.target.value === 'row';
+    c.tube = { type: row ? 'parallelogram' : e.target.value, apex_heights: q };
+    if (row) c.row = rowOf(q, Math.max(1, Number($('row-cells').value)), Number($('row-side').value));
   }
-  if (!apply(c)) e.target.value = preset.grid ? 'grid' : preset.tube ? preset.tube.type : 'open';
+  if (!apply(c)) e.target.value = modeOf(preset);
 });
 
 $('add-profile').addEventListener('click', () => {
@@ -436,14 +604,22 @@ $('export-glb').addEventListener('click', () => download(`${preset.name || 'phed
 $('export-fold').addEventListener('click', () => download(`${preset.name || 'phedra'}.fold`, designer.fold(41), 'application/json'));
 
 // --- start -----------------------------------------------------------------
+let frameLog = null;  // while recording (bench/designer.mjs): [{start, work, edit}] a frame
+
 function frame() {
+  const start = performance.now();
+  const edited = pending !== null;
   if (pending) {
     const edit = pending;
     pending = null;
-    if (applyEdit(edit) && !drag) scheduleFigures();
+    if (applyEdit(edit) && !drag) settle();
   }
   controls.update();
-  renderer.render(scene, camera);
+  if (needsRender) {
+    needsRender = false;
+    renderer.render(scene, camera);
+    if (frameLog) frameLog.push({ start, work: performance.now() - start, edit: edited });
+  }
   requestAnimationFrame(frame);
 }
 
@@ -478,41 +654,62 @@ window.phedraDesigner = {
   vertex: (k) => Array.from(surface.geometry.getAttribute('position').array.slice(3 * k, 3 * k + 3)),
   /// Every vertex at the slider's t in double precision, straight from the core.
   positions: () => Array.from(designer.evaluate(tOf(fraction))),
+  handlePosition: (kind, index) => handlePosition(kind, index)?.toArray() ?? null,
   handleScreen: (kind, index) => {
-    const h = handles.children.find((x) => x.userData.kind === kind && x.userData.index === index);
-    return h ? screenOf(h) : null;
+    const p = handlePosition(kind, index);
+    return p ? screenOf(p) : null;
   },
   apply: (p) => apply(p),
   figures: () => figures,
   glbSize: () => glbBytes().byteLength,
   fold: () => designer.fold(5),
-  /// Times `runs` edits of trajectory point 1 (rebuild from the preset, evaluate,
-  /// upload, render): milliseconds, median and worst, core alone and in all.
-  measure(runs, draw = true) {
-    const core = [], total = [];
+  /// Records every animation frame (its start, the time its work took, whether it
+  /// applied an edit) until stopFrames() returns the log.
+  recordFrames: () => { frameLog = []; },
+  stopFrames: () => { const log = frameLog; frameLog = null; return log; },
+  /// Times `runs` drag steps of trajectory point 1 through the code a drag runs:
+  /// milliseconds (median, worst) of `core` (Designer.set, info, evaluate), `step`
+  /// (the frame's applyEdit: the core, the upload of the positions, the handles and
+  /// labels) and `frame` (the step, a render and glFinish); for reference `load`, an
+  /// edit through the preset's text (sign toggles, mode changes, the JSON editor).
+  measure(runs) {
     const start = clone(preset);
-    for (let k = 0; k < runs; ++k) {
-      const c = clone(start);
-      c.trajectory[1] = c.trajectory[1].map((x, i) => x + (i === 2 ? 1e-3 * Math.sin(k) : 0));
-      const t0 = performance.now();
-      designer.load(JSON.stringify(c));
-      info = designer.info();
-      const positions = designer.evaluate(tOf(fraction));
-      const t1 = performance.now();
-      const attribute = surface.geometry.getAttribute('position');
-      attribute.array.set(positions);
-      attribute.needsUpdate = true;
-
-      if (draw) {
-        renderer.render(scene, camera);
-        renderer.getContext().finish();
+    const pixel = new Uint8Array(4);
+    const moved = (k) => start.trajectory[1].map((x, i) => x + (i === 2 ? 1e-3 * Math.sin(k) : 0));
+    const time = (body) => {
+      const times = [];
+      for (let k = 0; k < runs; ++k) {
+        const t0 = performance.now();
+        body(k);
+        times.push(performance.now() - t0);
       }
-      const t2 = performance.now();
-      core.push(t1 - t0);
-      total.push(t2 - t0);
-    }
-    designer.load(JSON.stringify(start));
-    const stat = (a) => { const s = a.slice().sort((x, y) => x - y); return { median: s[s.length >> 1], worst: s[s.length - 1] }; };
-    return { vertices: info.vertices, core: stat(core), total: stat(total) };
+      times.sort((x, y) => x - y);
+      return { median: times[times.length >> 1], worst: times[times.length - 1] };
+    };
+    const wasDragging = drag;
+    drag = { kind: 'trajectory', index: 1 };  // as while the hand moves: nothing settles
+    const core = time((k) => {
+      designer.set('trajectory', 1, ...moved(k));
+      designer.info();
+      designer.evaluate(tOf(fraction));
+    });
+    const step = time((k) => applyEdit({ key: 'trajectory', index: 1, value: moved(k) }));
+    const frame = time((k) => {
+      applyEdit({ key: 'trajectory', index: 1, value: moved(k) });
+      renderer.render(scene, camera);
+      // Reading a pixel back waits until the renderer has really drawn the frame (finish() need not).
+      const gl = renderer.getContext();
+      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+    });
+    const load = time((k) => {
+      const c = clone(start);
+      c.trajectory[1] = moved(k);
+      designer.load(JSON.stringify(c));
+      designer.info();
+      designer.evaluate(tOf(fraction));
+    });
+    drag = wasDragging;
+    apply(start);
+    return { vertices: info.vertices, core, step, frame, load };
   },
 };

@@ -17,11 +17,18 @@ export function serve(phedra, file, pattern) {
   });
 }
 
-export function launch() {
+/// The software renderers this machine offers WebGL (it has no GPU): Mesa's llvmpipe
+/// through ANGLE's GL-EGL backend, or Chromium's own SwiftShader.
+export const renderers = {
+  llvmpipe: ['--use-gl=angle', '--use-angle=gl-egl', '--ignore-gpu-blocklist'],
+  swiftshader: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+};
+
+export function launch(renderer = 'swiftshader', extra = []) {
   return chromium.launch({
     executablePath: '/usr/bin/chromium',
-    args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking',
-           '--disable-component-update', '--disable-sync', '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+    args: ['--no-sandbox', '--disable-quic', '--no-first-run', '--disable-background-networking',
+           '--disable-component-update', '--disable-sync', ...renderers[renderer], ...extra],
   });
 }
 
@@ -38,4 +45,17 @@ export function canvasColours(page) {
     for (let i = 0; i < data.length; i += 4) seen.add((data[i] >> 3) << 10 | (data[i + 1] >> 3) << 5 | (data[i + 2] >> 3));
     return seen.size;
   });
+}
+
+/// An open P-hedron of `profiles` profiles on a third of a helix, 8 apexes all +:
+/// 9 * profiles vertices (the 10^4-vertex model of issue 8 has 1112 profiles).
+export function helixPreset(profiles) {
+  const m = profiles - 1, trajectory = [], directions = [];
+  for (let i = 0; i <= m; ++i) {
+    const q = 0.33 * 2 * Math.PI * i / m;
+    trajectory.push([3 * Math.cos(q), 3 * Math.sin(q), 1.32 * i / m]);
+    const r = q + 20 * Math.PI / 180;
+    directions.push([Math.cos(r), Math.sin(r), 0]);
+  }
+  return { name: `helix-${profiles}`, trajectory, directions, apex_heights: [-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8], signs: '++++++' };
 }

@@ -113,6 +113,77 @@ for (const [name, morph, cycle] of [["default.json", false, false], ["grid-3x3.j
 }
 rmSync(scratch, { recursive: true, force: true });
 
+// Designer.set (the drag path) against a load of the edited preset's text: the
+// same interval and positions, for every kind of handle of several presets; an
+// edit the core refuses gives the CLI's message and keeps the previous design.
+const editDesigner = new module.Designer();
+const setAt = (p, key, index, value) => {
+  const parts = key.split(".");
+  if (index < 0) { const last = parts.pop(); parts.reduce((o, k) => o[k], p)[last] = value; }
+  else parts.reduce((o, k) => o[k], p)[index] = value;
+};
+let edits = 0;
+const sameDesign = (a, b, what) => {
+  const ia = a.info(), ib = b.info();
+  if (ia.t_lambda !== ib.t_lambda || ia.t_mu !== ib.t_mu || ia.vertices !== ib.vertices) fail(`${what}: interval or counts differ after set`);
+  const t = 0.5 * (ia.t_lambda + ia.t_mu);
+  const pa = Float64Array.from(a.evaluate(t)), pb = Float64Array.from(b.evaluate(t));
+  if (pa.some((x, i) => x !== pb[i])) fail(`${what}: positions differ after set`);
+};
+// d turned a little about the axis a (stays orthogonal to it): d + 0.05 a x d.
+const turned = (d, a) => [d[0] + 0.05 * (a[1] * d[2] - a[2] * d[1]), d[1] + 0.05 * (a[2] * d[0] - a[0] * d[2]), d[2] + 0.05 * (a[0] * d[1] - a[1] * d[0])];
+const editsOf = (p) => {
+  const list = [["trajectory", 1, p.trajectory[1].map((x, c) => x + [0.03, -0.02, 0.01][c])],
+                ["directions", 0, turned(p.directions[0], p.axis || [0, 0, 1])]];
+  if (p.apex_heights) list.push(["apex_heights", 2, p.apex_heights[2] + 0.05]);
+  if (p.tube) list.push(["tube.apex_heights", 1, p.tube.apex_heights[1] + 0.05]);
+  if (p.grid) list.push(["grid.u_heights", 2, p.grid.u_heights[2] + 0.05], ["grid.w_heights", 3, p.grid.w_heights[3] - 0.05]);
+  if (p.row) list.push(["row.free_heights", 1, p.row.free_heights[1] + 0.05]);
+  (p.couplings || []).forEach((c, k) => {
+    if (c.free_heights) list.push([`couplings.${k}.free_heights`, 0, c.free_heights[0] + 0.05]);
+    if (typeof c.free_height === "number") list.push([`couplings.${k}.free_height`, -1, c.free_height + 0.05]);
+  });
+  return list;
+};
+for (const name of ["default.json", "parallelogram-tube.json", "grid-3x3.json", "row-of-cells.json", "edge-sharing-pair.json", "tilted-axis.json"]) {
+  const preset = JSON.parse(readFileSync(path.join(top, "presets", name), "utf8"));
+  if (!Array.isArray(preset.trajectory) || !Array.isArray(preset.directions)) continue;
+  designer.load(JSON.stringify(preset));
+  for (const [key, index, value] of editsOf(preset)) {
+    const v = Array.isArray(value) ? value : [value, 0, 0];
+    const result = designer.set(key, index, ...v);
+    const candidate = JSON.parse(JSON.stringify(preset));
+    setAt(candidate, key, index, value);
+    const loaded = editDesigner.load(JSON.stringify(candidate));
+    if (result.ok !== loaded.ok || result.message !== loaded.message) {
+      fail(`${name}: set(${key}, ${index}) says ${JSON.stringify(result)}, load says ${JSON.stringify(loaded)}`);
+    } else if (result.ok) {
+      setAt(preset, key, index, value);
+      sameDesign(designer, editDesigner, `${name} ${key}[${index}]`);
+      edits += 1;
+    }
+  }
+  // Refused: a direction along the axis; the design before it stays.
+  const before = Float64Array.from(designer.evaluate(designer.info().t_star));
+  const axis = preset.axis || [0, 0, 1];
+  const refused = designer.set("directions", 1, ...axis);
+  const refusedPreset = JSON.parse(JSON.stringify(preset));
+  refusedPreset.directions[1] = axis;
+  const fresh = new module.Designer();
+  const loadRefused = fresh.load(JSON.stringify(refusedPreset));
+  fresh.delete();
+  if (refused.ok || loadRefused.ok || refused.field !== loadRefused.field || refused.message !== loadRefused.message) {
+    fail(`${name}: refused set ${JSON.stringify(refused)} vs load ${JSON.stringify(loadRefused)}`);
+  }
+  const after = Float64Array.from(designer.evaluate(designer.info().t_star));
+  if (after.some((x, i) => x !== before[i])) fail(`${name}: a refused set changed the design`);
+}
+for (const [key, index] of [["trajectory", 10000], ["grid.x", 0], ["nothing.0", 0], ["trajectory", -1], ["couplings.99999999999.free_height", -1]]) {
+  const r = designer.set(key, index, 0, 0, 0);
+  if (r.ok !== false || r.field !== key || !r.message.startsWith("no such entry")) fail(`set(${key}, ${index}): ${JSON.stringify(r)}`);
+}
+console.log(`${edits} edits through Designer.set agree with loads of the edited presets`);
+
 // Every bad preset of the robustness suite: the CLI's field and message.
 const expected = readFileSync(path.join(top, "tests/data/bad/expected.tsv"), "utf8").trim().split("\n");
 let bad = 0;

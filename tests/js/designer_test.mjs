@@ -2,14 +2,14 @@
 // driven by playwright-core): open a preset, drag a handle and see the mesh
 // change, break an assumption and see the CLI's message next to its handle,
 // move the slider, save the preset and compare with `phedra sample`, export
-// .glb and FOLD, and time drag steps of a 10^4-vertex model (printed: the figure
-// of docs/performance.md, not a pass/fail criterion).
+// .glb and FOLD, run drag steps of a 10^4-vertex model (bench/designer.mjs
+// times them for docs/performance.md).
 // usage: node tests/js/designer_test.mjs PHEDRA_BINARY PRESET SCREENSHOT.png
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
-import { canvasColours, launch, serve } from './browser.mjs';
+import { canvasColours, helixPreset, launch, serve } from './browser.mjs';
 
 const [phedra, preset, screenshot] = process.argv.slice(2);
 const scratch = mkdtempSync(path.join(tmpdir(), 'phedra-designer-'));
@@ -137,26 +137,51 @@ try {
   const smaller = await page.$eval('#kind', (e) => e.textContent);
   check(smaller.includes('2 x 3 grid'), `after 2 cells along u: "${smaller}"`);
 
+  // Drag a height of the grid's further cells (a purple handle on the apex line) with the mouse.
+  const uBefore = await api(() => window.phedraDesigner.preset().grid.u_heights[2]);
+  const heightAt = await api(() => window.phedraDesigner.handleScreen('grid.u_heights', 2));
+  check(heightAt !== null, 'no handle for grid.u_heights[2]');
+  if (heightAt) {
+    await page.mouse.move(...heightAt);
+    await page.mouse.down();
+    for (let k = 1; k <= 4; ++k) await page.mouse.move(heightAt[0], heightAt[1] - 5 * k);
+    await page.mouse.up();
+    await page.waitForTimeout(200);
+    const uAfter = await api(() => window.phedraDesigner.preset().grid.u_heights[2]);
+    check(Math.abs(uAfter - uBefore) > 1e-3, `dragging the height handle left grid.u_heights[2] at ${uAfter}`);
+    const onAxis = await api(() => window.phedraDesigner.handlePosition('grid.u_heights', 2));
+    check(Math.abs(onAxis[2] - uAfter) < 1e-5, `the height handle (single precision) is at ${onAxis}, the preset says ${uAfter}`);
+    check((await api(() => window.phedraDesigner.message())) === 'valid', `after dragging a height: ${await api(() => window.phedraDesigner.message())}`);
+  }
+
+  // A row of face-coupled cells: the tube and 3 cells, then 2.
+  await page.selectOption('#mode', 'row');
+  await page.waitForTimeout(200);
+  const rowKind = await page.$eval('#kind', (e) => e.textContent);
+  check(rowKind.includes('assembly of 4 tubes'), `row mode shows "${rowKind}" (${await api(() => window.phedraDesigner.message())})`);
+  await page.fill('#row-cells', '2');
+  await page.$eval('#row-cells', (e) => e.dispatchEvent(new Event('change')));
+  await page.waitForTimeout(200);
+  const shorter = await page.$eval('#kind', (e) => e.textContent);
+  check(shorter.includes('assembly of 3 tubes'), `after 2 cells in the row: "${shorter}"`);
+  const rowPreset = await api(() => window.phedraDesigner.preset());
+  check(rowPreset.row?.free_heights.length === 2 && rowPreset.tube?.type === 'parallelogram', `row preset: ${JSON.stringify(rowPreset.row)}`);
+
   // Real time: edits of a 10^4-vertex model.
-  const big = (() => {
-    const m = 1111, trajectory = [], directions = [];
-    for (let i = 0; i <= m; ++i) {
-      const q = 0.33 * 2 * Math.PI * i / m;
-      trajectory.push([3 * Math.cos(q), 3 * Math.sin(q), 1.32 * i / m]);
-      const r = q + 20 * Math.PI / 180;
-      directions.push([Math.cos(r), Math.sin(r), 0]);
-    }
-    return { name: 'big', trajectory, directions, apex_heights: [-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8], signs: '++++++' };
-  })();
+  const big = helixPreset(1112);
   const accepted = await api((p) => window.phedraDesigner.apply(p), big);
   check(accepted, `the 10^4-vertex preset was refused: ${await api(() => window.phedraDesigner.message())}`);
   if (accepted) {
-    const alone = await api(() => window.phedraDesigner.measure(40, false));
-    console.log(`designer: the core alone (no drawing in between): median ${alone.core.median.toFixed(2)} ms, worst ${alone.core.worst.toFixed(2)} ms`);
-    const timing = await api(() => window.phedraDesigner.measure(40));
-    console.log(`designer: ${timing.vertices} vertices, an edit (rebuild from the preset + evaluate): median ${timing.core.median.toFixed(2)} ms, worst ${timing.core.worst.toFixed(2)} ms; with upload and render: median ${timing.total.median.toFixed(2)} ms, worst ${timing.total.worst.toFixed(2)} ms`);
-    // A figure, not a pass/fail criterion (timings belong in benchmarks): docs/performance.md.
-    check(timing.vertices >= 10000, `the big model has ${timing.vertices} vertices`);
+    // Drag steps through the code a drag runs (bench/designer.mjs times them).
+    const steps = await api(() => window.phedraDesigner.measure(3));
+    check(steps.vertices >= 10000, `the big model has ${steps.vertices} vertices`);
+    for (const figure of ['core', 'step', 'frame', 'load']) {
+      check(steps[figure].median > 0 && Number.isFinite(steps[figure].worst), `drag step figure ${figure}: ${JSON.stringify(steps[figure])}`);
+    }
+    check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag steps: ${await api(() => window.phedraDesigner.message())}`);
+    const handle = await api(() => window.phedraDesigner.handlePosition('trajectory', 1));
+    const point = await api(() => window.phedraDesigner.preset().trajectory[1]);
+    check(Math.hypot(...handle.map((v, i) => v - point[i])) < 1e-5, `trajectory handle 1 at ${handle}, the preset says ${point}`);
   }
   check(errors.length === 0, `console errors: ${errors.join(' | ')}`);
   console.log(`designer: ${colours} colours, drag moved the mesh by ${movedMesh.toExponential(2)}, message "${message}", saved preset vs CLI ${worst.toExponential(2)}`);
