@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what phedra needs from Debian packages, only what is missing
 # (chromium runs the viewer's browser test; emscripten and node-acorn build the
-# browser core, scripts/build-wasm.sh), then the npm packages of web/.
+# browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
+# software WebGL renderer bench/designer.mjs measures), then the npm packages of web/.
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
 set -euo pipefail
 
@@ -10,7 +11,7 @@ packages=(
   libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   catch2 libbenchmark-dev
   emscripten node-acorn
-  chromium
+  chromium libegl-mesa0 libgl1-mesa-dri
 )
 
 missing=()
