@@ -4,7 +4,9 @@
 // trajectory point 1 through the code a drag runs (window.phedraDesigner.measure):
 //   core   Designer.set (validation, construction, flexion interval), info, evaluate
 //   step   the frame's edit: the core, the upload of the positions, handles, labels
-//   frame  the step, a render and glFinish (this machine renders in software)
+//   full   the step and a draw at full resolution, waited for (a pixel read back)
+//   frame  the same at the resolution a drag uses (`ratio` of the full one: lower
+//          only when the full draw does not fit in a 60 Hz frame)
 //   load   an edit through the preset's text instead (sign toggles, the JSON editor)
 // and then drags trajectory point 1 with the mouse for 120 moves, recording every
 // animation frame: how long its work took (edit, render), the interval to the next
@@ -103,9 +105,10 @@ if (args.includes('--json')) {
 } else {
   const ms = (f) => `${f.median.toFixed(2)} (${f.worst.toFixed(2)})`;
   console.log(`drag steps of trajectory point 1, ${runs} runs, milliseconds: median (worst); 60 Hz frame = 16.7 ms`);
-  console.log(['renderer', 'vertices', 'core', 'step', 'frame', 'load'].map((h) => h.padStart(16)).join(''));
+  console.log(['renderer', 'vertices', 'core', 'step', 'full', 'ratio', 'frame', 'load'].map((h) => h.padStart(15)).join(''));
   for (const r of results) {
-    console.log([r.renderer, String(r.vertices), ms(r.core), ms(r.step), ms(r.frame), ms(r.load)].map((c) => c.padStart(16)).join(''));
+    console.log([r.renderer, String(r.vertices), ms(r.core), ms(r.step), ms(r.full), r.ratio.toFixed(2), ms(r.frame), ms(r.load)]
+      .map((c) => c.padStart(15)).join(''));
   }
   console.log(`canvas ${results[0]?.canvas.join(' x ')} pixels, headless Chromium; WebGL on:`);
   for (const name of chosen) console.log(`  ${name}: ${results.find((r) => r.renderer === name)?.gl}`);

@@ -32,6 +32,63 @@ const requestRender = () => { needsRender = true; };
 controls.addEventListener('change', requestRender);
 window.addEventListener('resize', requestRender);
 
+// --- drag resolution ---------------------------------------------------------
+// A renderer too slow to redraw the model at full resolution within a 60 Hz
+// frame (software WebGL, weak GPUs) draws it at a lower resolution while a
+// handle is dragged, sharp again when the hand stops. The full-resolution draw
+// is timed once a model (a pixel read back waits for the rasterizer); a GPU
+// that draws the model within the frame never sees a lower resolution.
+const frameBudget = 1000 / 60;
+const minimumDragRatio = 0.35;
+let drawCost = null;      // ms of a draw at resolution fraction r: {fixed, fill} with cost = fixed + fill r^2; null until timed
+let calibrate = true;     // time the next draws
+let stepCost = 2;         // ms: the main-thread work of a drag step (running estimate)
+let dragRatio = 1;        // the fraction of the resolution while dragging
+const pixel = new Uint8Array(4);
+
+/// Renders and waits for the rasterizer (reads a pixel back): milliseconds.
+function timedDraw() {
+  const gl = renderer.getContext();
+  const t0 = performance.now();
+  renderer.render(scene, camera);
+  gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+  return performance.now() - t0;
+}
+
+/// Times a draw at full and at half resolution: what goes with the pixels (fill)
+/// and what does not (vertices, the pipeline).
+function calibrateDraw() {
+  const full = timedDraw();
+  renderer.setPixelRatio(window.devicePixelRatio * 0.5);
+  timedDraw();  // the first draw at a new size allocates
+  const half = timedDraw();
+  renderer.setPixelRatio(window.devicePixelRatio);
+  requestRender();  // resizing cleared the canvas
+  const fill = Math.max(0, (full - half) / 0.75);
+  drawCost = { fixed: Math.max(0, full - fill), fill };
+}
+
+/// The fraction of the resolution at which a drag frame fits in a 60 Hz frame.
+function chooseDragRatio() {
+  const budget = frameBudget - stepCost - 2;  // 2 ms for the browser's own work
+  if (drawCost === null || drawCost.fixed + drawCost.fill <= budget) return 1;
+  const room = budget - drawCost.fixed;
+  return room <= 0 || drawCost.fill === 0 ? minimumDragRatio : Math.min(1, Math.max(minimumDragRatio, Math.sqrt(room / drawCost.fill)));
+}
+
+function beginDrag() {
+  dragRatio = chooseDragRatio();
+  if (dragRatio < 1) renderer.setPixelRatio(window.devicePixelRatio * dragRatio);
+  requestRender();
+}
+
+function endDrag() {
+  if (dragRatio < 1) renderer.setPixelRatio(window.devicePixelRatio);
+  dragRatio = 1;
+  requestRender();
+}
+window.addEventListener('resize', () => { calibrate = true; });
+
 // --- the core --------------------------------------------------------------
 const core = await createPhedra();
 const designer = new core.Designer();
@@ -62,6 +119,7 @@ function apply(candidate, { keepFigures = false } = {}) {
   rebuildGeometry();
   placeHandles();
   updatePanel();
+  calibrate = true;
   if (!keepFigures) scheduleFigures();
   showMessage();
   return true;
@@ -400,6 +458,7 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
   drag = { kind: hit.object.userData.kind, key, index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, handlePosition(key, index)) };
   controls.enabled = false;
   renderer.domElement.setPointerCapture(event.pointerId);
+  beginDrag();
 });
 
 renderer.domElement.addEventListener('pointermove', (event) => {
@@ -409,7 +468,7 @@ renderer.domElement.addEventListener('pointermove', (event) => {
   pending = edited(drag, point);
 });
 
-renderer.domElement.addEventListener('pointerup', () => {
+function release() {
   if (!drag) return;
   drag = null;
   controls.enabled = true;
@@ -417,8 +476,11 @@ renderer.domElement.addEventListener('pointerup', () => {
     applyEdit(pending);
     pending = null;
   }
+  endDrag();
   settle();
-});
+}
+renderer.domElement.addEventListener('pointerup', release);
+renderer.domElement.addEventListener('pointercancel', release);
 
 /// The edit that puts the dragged handle at `point`: {key, index, value}.
 function edited(handle, point) {
@@ -613,11 +675,17 @@ function frame() {
     const edit = pending;
     pending = null;
     if (applyEdit(edit) && !drag) settle();
+    stepCost = 0.8 * stepCost + 0.2 * (performance.now() - start);
   }
   controls.update();
   if (needsRender) {
     needsRender = false;
     renderer.render(scene, camera);
+    if (calibrate && !drag) {
+      // The draw above uploaded what changed; time the next ones.
+      calibrate = false;
+      calibrateDraw();
+    }
     if (frameLog) frameLog.push({ start, work: performance.now() - start, edit: edited });
   }
   requestAnimationFrame(frame);
@@ -665,16 +733,19 @@ window.phedraDesigner = {
   fold: () => designer.fold(5),
   /// Records every animation frame (its start, the time its work took, whether it
   /// applied an edit) until stopFrames() returns the log.
+  /// The resolution a drag would use now (a fraction of the full one) and the timed full draw (ms).
+  dragResolution: () => ({ ratio: chooseDragRatio(), drawCost, canvas: [renderer.domElement.width, renderer.domElement.height] }),
   recordFrames: () => { frameLog = []; },
   stopFrames: () => { const log = frameLog; frameLog = null; return log; },
   /// Times `runs` drag steps of trajectory point 1 through the code a drag runs:
   /// milliseconds (median, worst) of `core` (Designer.set, info, evaluate), `step`
   /// (the frame's applyEdit: the core, the upload of the positions, the handles and
-  /// labels) and `frame` (the step, a render and glFinish); for reference `load`, an
-  /// edit through the preset's text (sign toggles, mode changes, the JSON editor).
+  /// labels), `full` (the step and a draw at full resolution, waited for) and
+  /// `frame` (the same at the resolution a drag uses, `ratio` of the full one);
+  /// for reference `load`, an edit through the preset's text (sign toggles, mode
+  /// changes, the JSON editor).
   measure(runs) {
     const start = clone(preset);
-    const pixel = new Uint8Array(4);
     const moved = (k) => start.trajectory[1].map((x, i) => x + (i === 2 ? 1e-3 * Math.sin(k) : 0));
     const time = (body) => {
       const times = [];
@@ -694,13 +765,17 @@ window.phedraDesigner = {
       designer.evaluate(tOf(fraction));
     });
     const step = time((k) => applyEdit({ key: 'trajectory', index: 1, value: moved(k) }));
-    const frame = time((k) => {
+    // A frame waits for the rasterizer (a pixel read back): at full resolution, and
+    // at the resolution a drag uses (the same unless the full one does not fit).
+    const drawn = (k) => {
       applyEdit({ key: 'trajectory', index: 1, value: moved(k) });
-      renderer.render(scene, camera);
-      // Reading a pixel back waits until the renderer has really drawn the frame (finish() need not).
-      const gl = renderer.getContext();
-      gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
-    });
+      timedDraw();
+    };
+    const full = time(drawn);
+    beginDrag();
+    const ratio = dragRatio;
+    const frame = time(drawn);
+    endDrag();
     const load = time((k) => {
       const c = clone(start);
       c.trajectory[1] = moved(k);
@@ -710,6 +785,6 @@ window.phedraDesigner = {
     });
     drag = wasDragging;
     apply(start);
-    return { vertices: info.vertices, core, step, frame, load };
+    return { vertices: info.vertices, core, step, full, frame, ratio, load };
   },
 };

@@ -51,6 +51,11 @@ try {
   check(movedPoint > 1e-3, `dragging did not move trajectory[3] (${movedPoint})`);
   check(movedMesh > 1e-4, `dragging did not change the mesh (${movedMesh})`);
   check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag: ${await api(() => window.phedraDesigner.message())}`);
+  // The drag may draw at a lower resolution (a slow renderer); once released, the full one is back.
+  const resolution = await api(() => window.phedraDesigner.dragResolution());
+  const fullWidth = await page.$eval('#view', (e) => Math.round(e.clientWidth * window.devicePixelRatio));
+  check(resolution.canvas[0] === fullWidth, `after the drag the canvas is ${resolution.canvas} pixels wide, not ${fullWidth}`);
+  check(resolution.ratio >= 0.35 && resolution.ratio <= 1 && resolution.drawCost !== null, `drag resolution ${JSON.stringify(resolution)}`);
 
   // Break an assumption through the preset JSON: a direction along the axis.
   const shown = await api(() => window.phedraDesigner.positions());
@@ -175,7 +180,7 @@ try {
     // Drag steps through the code a drag runs (bench/designer.mjs times them).
     const steps = await api(() => window.phedraDesigner.measure(3));
     check(steps.vertices >= 10000, `the big model has ${steps.vertices} vertices`);
-    for (const figure of ['core', 'step', 'frame', 'load']) {
+    for (const figure of ['core', 'step', 'full', 'frame', 'load']) {
       check(steps[figure].median > 0 && Number.isFinite(steps[figure].worst), `drag step figure ${figure}: ${JSON.stringify(steps[figure])}`);
     }
     check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag steps: ${await api(() => window.phedraDesigner.message())}`);
