@@ -63,7 +63,7 @@ function calibrateDraw() {
   timedDraw();  // the first draw at a new size allocates
   const half = timedDraw();
   renderer.setPixelRatio(window.devicePixelRatio);
-  requestRender();  // resizing cleared the canvas
+  renderer.render(scene, camera);  // resizing cleared the canvas
   const fill = Math.max(0, (full - half) / 0.75);
   drawCost = { fixed: Math.max(0, full - fill), fill };
 }

@@ -29,7 +29,12 @@ try {
   const api = (f, ...args) => page.evaluate(f, ...args);
 
   // Rendered: the canvas holds more than the background.
-  const colours = await canvasColours(page);
+  // (on a loaded 2-core machine the software renderer may take a while for the first frames)
+  let colours = await canvasColours(page);
+  for (let k = 0; k < 20 && colours < 10; ++k) {
+    await page.waitForTimeout(250);
+    colours = await canvasColours(page);
+  }
   check(colours >= 10, `the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
 
