@@ -148,22 +148,16 @@ std::optional<std::vector<std::vector<Vec2>>> DevelopedPattern::in_plane(double 
   const double z00 = flat_[0][0].y(), side0 = flat_[0][0].x() > 0 ? 1.0 : -1.0;
   // L_0: the moving apex at height t, V_00 keeps its height and its distances.
   std::vector<Vec2> s(n + 1);
-  double x2;
-  if (case_ == MotionCase::a) {
-    x2 = r0_[0] * r0_[0] - (t - z00) * (t - z00);
-    if (x2 < 0.0) return std::nullopt;
-    const double other = r1_[0] * r1_[0] - x2;
-    if (other < 0.0) return std::nullopt;
-    s[0] = Vec2(0.0, t);
-    s[1] = Vec2(0.0, z00 + (h[1] >= z00 ? 1.0 : -1.0) * std::sqrt(other));
-  } else {
-    x2 = r1_[0] * r1_[0] - (t - z00) * (t - z00);
-    if (x2 < 0.0) return std::nullopt;
-    const double other = r0_[0] * r0_[0] - x2;
-    if (other < 0.0) return std::nullopt;
-    s[1] = Vec2(0.0, t);
-    s[0] = Vec2(0.0, z00 + (h[0] >= z00 ? 1.0 : -1.0) * std::sqrt(other));
-  }
+  // Case (a) moves S_0 to height t, case (b) S_1; the other apex stays on the axis
+  // where the first radii of both allow, on the side it starts on.
+  const std::size_t moving = case_ == MotionCase::a ? 0 : 1, fixed = 1 - moving;
+  const double r_moving = moving == 0 ? r0_[0] : r1_[0], r_fixed = moving == 0 ? r1_[0] : r0_[0];
+  const double x2 = r_moving * r_moving - (t - z00) * (t - z00);
+  if (x2 < 0.0) return std::nullopt;
+  const double other = r_fixed * r_fixed - x2;
+  if (other < 0.0) return std::nullopt;
+  s[moving] = Vec2(0.0, t);
+  s[fixed] = Vec2(0.0, z00 + (h[fixed] >= z00 ? 1.0 : -1.0) * std::sqrt(other));
   std::vector<std::vector<Vec2>> p(rows + 1, std::vector<Vec2>(n));
   p[0][0] = Vec2(side0 * std::sqrt(x2), z00);
   for (std::size_t j = 0; j + 1 < n; ++j) {

@@ -131,20 +131,22 @@ try {
   const afterSign = await api(() => window.phedraDesigner.preset().signs);
   check(afterSign !== JSON.parse(readFileSync(saved, 'utf8')).signs, 'the sign toggle did nothing');
 
-  // Modes: a tube (closure in the figures) and a grid of cells.
-  await page.selectOption('#mode', 'parallelogram');
-  await page.waitForTimeout(400);
-  const tubeKind = await page.$eval('#kind', (e) => e.textContent);
+  // Modes and their parameters; each answers with the kind line of the panel.
+  const kindAfter = async (wait) => { await page.waitForTimeout(wait); return page.$eval('#kind', (e) => e.textContent); };
+  const chooseMode = async (mode, wait = 200) => { await page.selectOption('#mode', mode); return kindAfter(wait); };
+  const setCount = async (id, value) => {
+    await page.fill(`#${id}`, value);
+    await page.$eval(`#${id}`, (e) => e.dispatchEvent(new Event('change')));
+    return kindAfter(200);
+  };
+
+  // A tube (closure in the figures) and a grid of cells.
+  const tubeKind = await chooseMode('parallelogram', 400);
   check(tubeKind.startsWith('parallelogram tube'), `tube mode shows "${tubeKind}" (${await api(() => window.phedraDesigner.message())})`);
   check((await page.$eval('#figures', (e) => e.textContent)).includes('closure'), 'no closure figure for the tube');
-  await page.selectOption('#mode', 'grid');
-  await page.waitForTimeout(200);
-  const gridKind = await page.$eval('#kind', (e) => e.textContent);
+  const gridKind = await chooseMode('grid');
   check(gridKind.includes('grid of parallelogram cells'), `grid mode shows "${gridKind}" (${await api(() => window.phedraDesigner.message())})`);
-  await page.fill('#cells-u', '2');
-  await page.$eval('#cells-u', (e) => e.dispatchEvent(new Event('change')));
-  await page.waitForTimeout(200);
-  const smaller = await page.$eval('#kind', (e) => e.textContent);
+  const smaller = await setCount('cells-u', '2');
   check(smaller.includes('2 x 3 grid'), `after 2 cells along u: "${smaller}"`);
 
   // Drag a height of the grid's further cells (a purple handle on the apex line) with the mouse.
@@ -165,14 +167,9 @@ try {
   }
 
   // A row of face-coupled cells: the tube and 3 cells, then 2.
-  await page.selectOption('#mode', 'row');
-  await page.waitForTimeout(200);
-  const rowKind = await page.$eval('#kind', (e) => e.textContent);
+  const rowKind = await chooseMode('row');
   check(rowKind.includes('assembly of 4 tubes'), `row mode shows "${rowKind}" (${await api(() => window.phedraDesigner.message())})`);
-  await page.fill('#row-cells', '2');
-  await page.$eval('#row-cells', (e) => e.dispatchEvent(new Event('change')));
-  await page.waitForTimeout(200);
-  const shorter = await page.$eval('#kind', (e) => e.textContent);
+  const shorter = await setCount('row-cells', '2');
   check(shorter.includes('assembly of 3 tubes'), `after 2 cells in the row: "${shorter}"`);
   const rowPreset = await api(() => window.phedraDesigner.preset());
   check(rowPreset.row?.free_heights.length === 2 && rowPreset.tube?.type === 'parallelogram', `row preset: ${JSON.stringify(rowPreset.row)}`);
