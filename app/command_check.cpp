@@ -1,7 +1,8 @@
-// phedra check PRESET [--samples N] [--tolerance REL] [--closure-only] [--json]
+// phedra check PRESET [--samples N] [--tolerance REL] [--closure-only] [--geometry-only] [--json]
 
 #include "commands.h"
 #include "phedra/assembly_check.h"
+#include "phedra/buildability.h"
 #include "phedra/errors.h"
 #include "support.h"
 
@@ -14,6 +15,8 @@ namespace {
 struct CheckCommandOptions {
   std::string preset;
   CheckOptions check;
+  BuildabilityOptions buildability;
+  bool geometry_only = false;
   bool json = false;
 };
 
@@ -23,7 +26,9 @@ void add_check_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<CheckCommandOptions>();
   CLI::App* sub = app.add_subcommand(
       "check", "Check planarity, isometry, tube closure and shared vertices over the whole flexion interval (dense "
-               "samples, both limits and t*); exit 1 when a figure exceeds the tolerance");
+               "samples, both limits and t*), and buildability: every panel simple (not a bow-tie) and the motion "
+               "free of collisions, with the cause of every invalid panel and the preset field to change; exit 1 "
+               "when a figure exceeds the tolerance or the design is not buildable over the whole interval");
   add_preset_argument(sub, options->preset);
   sub->add_option("--samples", options->check.samples, "Evenly spaced samples of [t_lambda, t_mu], limits included")
       ->check(CLI::Range(2, 10000000))
@@ -36,16 +41,42 @@ void add_check_command(CLI::App& app, Context& context) {
       "--closure-only", [options] { options->check.shape = false; },
       "The closure check alone: tube closure gaps, shared vertices and the reproduction at t*, without planarity "
       "and isometry of every panel (about three times faster on large arrays)");
+  sub->add_flag("--geometry-only", options->geometry_only,
+                "The geometric checks alone (planarity, isometry, closure): no buildability, and the exit code "
+                "ignores it");
+  sub->add_option("--intersection-samples", options->buildability.sweep.samples_per_side,
+                  "Buildability: samples from t* to each flexion limit for the collision sweep")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
-    const Design design = load(context, options->preset);
-    const AssemblyCheckReport report = check_assembly(design.assembly, options->check);
+    const LoadedDesign loaded = load_with_preset(context, options->preset);
+    const AssemblyCheckReport report = check_assembly(loaded.design.assembly, options->check);
+    std::optional<BuildabilityReport> buildability;
+    if (!options->geometry_only) buildability = assess_buildability(loaded.design, &loaded.preset, options->buildability);
+    const bool buildable = !buildability || buildability->buildable();
     if (options->json) {
-      context.out << report.to_json().dump(2) << '\n';
+      nlohmann::json j = report.to_json();
+      j["geometry_passed"] = report.passed();
+      j["passed"] = report.passed() && buildable;
+      if (buildability) j["buildability"] = buildability->to_json();
+      context.out << j.dump(2) << '\n';
     } else {
+      const std::string& name = loaded.design.assembly.name();
+      if (!report.passed()) {
+        context.out << "FAIL: " << name << ": a geometric figure exceeds its tolerance\n";
+      } else if (!buildability) {
+        context.out << "PASS: " << name << ": the geometry holds (buildability not checked: --geometry-only)\n";
+      } else if (buildable) {
+        context.out << "PASS: " << name << ": the geometry holds and the design is buildable over its whole flexion interval\n";
+      } else {
+        context.out << "FAIL: " << name << ": the geometry holds, but the design is not buildable over its whole "
+                       "flexion interval (below; --geometry-only checks the geometry alone)\n";
+      }
       context.out << report;
+      if (buildability) context.out << *buildability;
     }
-    context.exit_code = report.passed() ? 0 : static_cast<int>(ExitCode::check_failed);
+    context.exit_code = report.passed() && buildable ? 0 : static_cast<int>(ExitCode::check_failed);
   });
 }
 

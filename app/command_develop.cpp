@@ -7,6 +7,7 @@
 #include "phedra/number_format.h"
 #include "phedra/preset.h"
 #include "support.h"
+#include "buildability_warning.h"
 
 #include <filesystem>
 #include <memory>
@@ -139,6 +140,17 @@ void add_develop_command(CLI::App& app, Context& context) {
       if (ext == ".json") text = preset_to_json(pattern.folded_preset(t, fold)).dump(2) + "\n";
       emit(text, path, o->pattern, context.out);
     }
+    // Whether the folded P-hedron can be built: a choice of the strips can make
+    // panels pass through each other on the way.
+    const Design folded{Assembly(PHedron(pattern.folded_preset(t, fold))), false, "open P-hedron"};
+    const BuildabilityReport buildability = assess_for_output(folded);
+    if (!buildability.buildable()) {
+      context.err << "phedra: warning: the folded P-hedron (strip choices "
+                  << (o->fold.empty() ? std::string(pattern.strips(), '+') : o->fold)
+                  << ") is not buildable: " << buildability.summary()
+                  << "; another --fold may be (phedra check on the .json output names the causes)\n";
+    }
+    report["folded_buildability"] = buildability.file_json();
     report["folds"] = true;
     report["chosen_direction"] = chosen->direction > 0 ? "up" : "down";
     report["fold"] = o->fold.empty() ? std::string(pattern.strips(), '+') : o->fold;

@@ -8,9 +8,11 @@
 #include "phedra/mesh_export.h"
 #include "phedra/number_format.h"
 #include "phedra/self_intersection.h"
+#include "buildability_warning.h"
 #include "progress.h"
 #include "support.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -34,11 +36,9 @@ struct GenerateOptions {
 };
 
 /// --no-self-intersection: the intersection-free sub-interval around t*.
-std::optional<std::pair<double, double>> free_range(Context& context, const Design& design, const GenerateOptions& o) {
+std::optional<std::pair<double, double>> free_range(Context& context, const SelfIntersectionReport& report,
+                                                    const GenerateOptions& o) {
   if (!o.no_self_intersection) return std::nullopt;
-  SelfIntersectionOptions options;
-  options.samples_per_side = o.intersection_samples;
-  const SelfIntersectionReport report = find_self_intersections(design, options);
   const std::pair<double, double> range = intersection_free_interval(report);
   if (!(range.second > range.first)) {
     throw InvalidInputError("--no-self-intersection", "the intersection-free interval is the single configuration t = " +
@@ -71,8 +71,9 @@ Format format_of(const std::string& path) {
 }
 
 void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary,
-                const std::optional<std::pair<double, double>>& range) {
+                const std::optional<std::pair<double, double>>& range, const BuildabilityReport& buildability) {
   GltfOptions options;
+  options.buildability = buildability.file_json();
   options.range = range;
   options.binary = binary;
   options.seconds = o.seconds;
@@ -116,6 +117,15 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
               << (o.morph ? "largest vertex error between keyframes: " : "largest hinge opening between keyframes: ")
               << format_number(report.max_opening) << " (" << format_number(report.max_opening / report.model_size)
               << " of the model size, tolerance " << format_number(o.hinge_tolerance) << ")\n";
+  if (report.max_opening > report.tolerance) {
+    context.err << "phedra: warning: the " << (o.morph ? "vertex error" : "hinge opening") << " between keyframes ("
+                << format_number(report.max_opening / report.model_size) << " of the model size) exceeds the tolerance "
+                << format_number(o.hinge_tolerance)
+                << (o.morph ? ": the morph targets are capped at 250; the node representation (without --morph) or a "
+                              "larger --hinge-tolerance keeps it"
+                            : ": the keyframes are capped; a larger --hinge-tolerance keeps it")
+                << '\n';
+  }
 }
 
 }  // namespace
@@ -163,9 +173,20 @@ void add_generate_command(CLI::App& app, Context& context) {
       throw InvalidInputError("--no-self-intersection", "--cycle runs through the flexion limits; it cannot be "
                                                         "restricted to the intersection-free interval");
     }
-    const std::optional<std::pair<double, double>> range = free_range(context, design, *o);
+    const BuildabilityReport buildability = assess_for_output(design, o->intersection_samples);
+    const std::optional<std::pair<double, double>> range = free_range(context, buildability.motion, *o);
+    const FlexionInterval& interval = design.assembly.flexion_interval();
+    // What the file holds: the static t, or the animated range.
+    auto warn = [&](double lo, double hi) {
+      warn_unless_buildable(context, buildability, lo, hi, o->no_self_intersection || o->cycle ? "" : "--no-self-intersection");
+    };
     if (format == Format::glb || format == Format::gltf) {
-      write_gltf(context, design, *o, format == Format::glb, range);
+      if (o->static_t) {
+        warn(*o->static_t, *o->static_t);
+      } else {
+        warn(range ? range->first : interval.lower.t, range ? range->second : interval.upper.t);
+      }
+      write_gltf(context, design, *o, format == Format::glb, range, buildability);
       return;
     }
     if (format == Format::obj || format == Format::ply) {
@@ -173,6 +194,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       const FlexionInterval& f = design.assembly.flexion_interval();
       if (!f.contains(t)) throw OutOfIntervalError(t, f.lower.t, f.upper.t);
       check_in_range(t, range);
+      warn(t, t);
       emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply"), o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\" at t = "
                   << format_number(t) << '\n';
@@ -181,14 +203,16 @@ void add_generate_command(CLI::App& app, Context& context) {
     const std::vector<double> ts = range ? o->parameters.values(sub, design.assembly, *range, "--no-self-intersection",
                                                                 "intersection-free")
                                          : o->parameters.values(sub, design.assembly);
+    warn(*std::min_element(ts.begin(), ts.end()), *std::max_element(ts.begin(), ts.end()));
     if (format == Format::fold) {
-      emit(fold_json(design, ts), o->output, o->preset, context.out);
+      emit(fold_json(design, ts, buildability.file_json()), o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
                   << ts.size() << " frames over [" << format_number(ts.front()) << ", " << format_number(ts.back())
                   << "]\n";
       return;
     }
-    const MotionDocument document = motion_document(design);
+    MotionDocument document = motion_document(design);
+    document.buildability = buildability.file_json();
     emit(motion_json(document, ts), o->output, o->preset, context.out);
     context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
                 << document.labels.size() << " vertices, " << document.faces.size() << " faces, " << ts.size()

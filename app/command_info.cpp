@@ -6,6 +6,7 @@
 #include "phedra/control_polylines.h"
 #include "phedra/number_format.h"
 #include "phedra/self_intersection.h"
+#include "buildability_warning.h"
 #include "support.h"
 
 #include <algorithm>
@@ -92,33 +93,18 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
   return j;
 }
 
-/// Invalid panels and a collision at t*: what a designer must know before folding.
-struct PanelFindings {
-  std::vector<InvalidPanel> invalid;
-  std::optional<Collision> collision;
-  std::size_t count(PanelShape shape) const {
-    return static_cast<std::size_t>(
-        std::count_if(invalid.begin(), invalid.end(), [shape](const InvalidPanel& p) { return p.shape == shape; }));
-  }
-};
-
-nlohmann::json panels_json(const PanelFindings& f, bool several) {
-  return {{"bow_tie", f.count(PanelShape::bow_tie)},
-          {"degenerate", f.count(PanelShape::degenerate)},
-          {"self_intersection_at_t_star", f.collision ? nlohmann::json(describe(*f.collision, several)) : nullptr}};
+nlohmann::json panels_json(const BuildabilityReport& b) {
+  return {{"distinct", b.panels},
+          {"shared_walls", b.shared_walls},
+          {"bow_tie", b.count(PanelShape::bow_tie)},
+          {"degenerate", b.count(PanelShape::degenerate)},
+          {"self_intersection_at_t_star",
+           b.motion.at_t_star ? nlohmann::json(describe(*b.motion.at_t_star, b.members > 1)) : nullptr}};
 }
 
-void print_panels(std::ostream& out, const PanelFindings& f, bool several) {
-  out << "panels at t*:      ";
-  if (f.invalid.empty()) {
-    out << "all valid";
-  } else {
-    out << f.count(PanelShape::bow_tie) << " bow-tie, " << f.count(PanelShape::degenerate)
-        << " degenerate (cannot be cut as one flat plate; see phedra intersections)";
-  }
-  out << "; self-intersection: "
-      << (f.collision ? describe(*f.collision, several) : std::string("none at t* (phedra intersections sweeps the interval)"))
-      << '\n';
+void print_panels(std::ostream& out, const BuildabilityReport& b) {
+  out << "buildability:      " << b.summary() << '\n';
+  if (!b.buildable()) out << "                   (phedra check names the cause of each invalid panel and the field to change)\n";
 }
 
 void print_info(std::ostream& out, const Design& design, const MotionDocument& mesh, const AssemblyCheckReport& at_star) {
@@ -139,8 +125,9 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
   } else {
     out << "members:           " << a.member_count() << " (" << a.member_name(0) << ", ..., "
         << a.member_name(a.member_count() - 1) << "), " << a.shared_vertices().size() << " shared vertex groups\n"
-        << "mesh:              " << mesh.labels.size() << " vertices, " << mesh.faces.size() << " faces"
-        << (design.merge ? " (merged: shared vertices welded, shared face strips deleted)" : " (members side by side)")
+        << "mesh:              " << mesh.labels.size() << " vertices, " << mesh.faces.size() << " panels"
+        << (design.merge ? " (merged: shared vertices welded, shared face strips deleted)"
+                         : " (shared vertices welded, a wall two cells share is one panel)")
         << '\n';
   }
   out << "motion parameter:  case (" << to_string(p.motion_case()) << "), t = axis coordinate of "
@@ -184,15 +171,15 @@ void add_info_command(CLI::App& app, Context& context) {
     const Design design = load(context, options->preset);
     const MotionDocument mesh = motion_document(design);
     const AssemblyCheckReport at_star = check_assembly_at_t_star(design.assembly);
-    const PanelFindings panels{invalid_panels(design), self_intersection_at_t_star(design)};
-    const bool several = design.assembly.member_count() > 1;
+    const BuildabilityReport buildability = assess_for_output(design);
     if (options->json) {
       nlohmann::json j = info_json(design, mesh, at_star);
-      j["panels"] = panels_json(panels, several);
+      j["panels"] = panels_json(buildability);
+      j["buildability"] = buildability.file_json();
       context.out << j.dump(2) << '\n';
     } else {
       print_info(context.out, design, mesh, at_star);
-      print_panels(context.out, panels, several);
+      print_panels(context.out, buildability);
     }
   });
 }

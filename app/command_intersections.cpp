@@ -2,6 +2,7 @@
 
 #include "commands.h"
 #include "phedra/errors.h"
+#include "phedra/buildability.h"
 #include "phedra/self_intersection.h"
 #include "support.h"
 
@@ -24,8 +25,9 @@ void add_intersections_command(CLI::App& app, Context& context) {
   CLI::App* sub = app.add_subcommand(
       "intersections",
       "Find where the design intersects itself over its flexion interval: panels that penetrate each other and "
-      "hinges that fold shut; print the intersection-free sub-interval around t* and the panels that end it, and "
-      "the invalid (bow-tie, degenerate) panels; exit 1 when the configuration at t* itself intersects");
+      "hinges that fold shut; print the intersection-free sub-interval around t* and the panels that end it, the "
+      "invalid (bow-tie, degenerate) panels with their causes, and the buildable part of the interval; exit 1 when "
+      "the configuration at t* itself intersects");
   add_preset_argument(sub, o->preset);
   sub->add_option("--samples", o->sweep.samples_per_side,
                   "Samples from t* to each flexion limit (crowding towards the limit); a collision is then "
@@ -34,14 +36,18 @@ void add_intersections_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_flag("--json", o->json, "Print JSON instead of text");
   sub->callback([o, &context] {
-    const Design design = load(context, o->preset);
-    const SelfIntersectionReport report = find_self_intersections(design, o->sweep);
+    const LoadedDesign loaded = load_with_preset(context, o->preset);
+    BuildabilityOptions options;
+    options.sweep = o->sweep;
+    const BuildabilityReport report = assess_buildability(loaded.design, &loaded.preset, options);
     if (o->json) {
-      context.out << report.to_json().dump(2) << '\n';
+      nlohmann::json j = report.motion.to_json();
+      j["buildability"] = report.to_json();
+      context.out << j.dump(2) << '\n';
     } else {
-      context.out << report;
+      context.out << report.motion << report;
     }
-    context.exit_code = report.at_t_star ? static_cast<int>(ExitCode::check_failed) : 0;
+    context.exit_code = report.motion.at_t_star ? static_cast<int>(ExitCode::check_failed) : 0;
   });
 }
 

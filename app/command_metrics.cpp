@@ -4,6 +4,7 @@
 #include "phedra/errors.h"
 #include "phedra/metamaterial_metrics.h"
 #include "support.h"
+#include "buildability_warning.h"
 
 #include <filesystem>
 #include <memory>
@@ -44,15 +45,19 @@ void add_metrics_command(CLI::App& app, Context& context) {
     }
     const Design design = load(context, o->preset);
     const MetricsReport report = metamaterial_metrics(design, o->metrics);
+    const BuildabilityReport buildability = assess_for_output(design);
+    nlohmann::json document = report.to_json();
+    document["buildability"] = buildability.file_json();
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
-      const std::string text = ext == ".csv" ? report.to_csv() : ext == ".svg" ? report.to_svg() : report.to_json().dump(2) + "\n";
+      const std::string text = ext == ".csv" ? report.to_csv() : ext == ".svg" ? report.to_svg() : document.dump(2) + "\n";
       emit(text, path, o->preset, context.out);
     }
     if (o->json) {
-      context.out << report.to_json().dump(2) << '\n';
+      context.out << document.dump(2) << '\n';
     } else {
       context.out << report;
+      context.out << "buildability: " << buildability.summary() << '\n';
       for (const std::string& path : o->outputs) context.out << "wrote " << path << '\n';
     }
   });

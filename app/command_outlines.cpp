@@ -5,6 +5,7 @@
 #include "phedra/flat_outlines.h"
 #include "phedra/number_format.h"
 #include "support.h"
+#include "buildability_warning.h"
 
 #include <filesystem>
 #include <memory>
@@ -43,15 +44,17 @@ void add_outlines_command(CLI::App& app, Context& context) {
     const Design design = load(context, o->preset);
     const OutlineSheet sheet = flat_outlines(design, o->outline);
     emit(ext == ".svg" ? outlines_svg(sheet) : outlines_dxf(sheet), o->output, o->preset, context.out);
-    std::size_t bow_ties = 0;
-    for (const FlatPanel& p : sheet.panels) bow_ties += p.bow_tie ? 1 : 0;
+    const BuildabilityReport buildability = assess_for_output(design);
     context.out << "wrote " << o->output << ": " << sheet.panels.size() << " panel outlines, " << sheet.hinges
                 << " hinges" << (o->outline.tabs ? " with a tab each" : "") << ", sheet " << format_number(sheet.width)
                 << " x " << format_number(sheet.height) << " mm\n";
-    if (bow_ties) {
-      context.out << "warning: " << bow_ties
-                  << " panels are bow-ties (two edges cross; outlined in red): they cannot be cut as one plate\n";
+    if (!buildability.panels_simple()) {
+      context.err << "phedra: warning: " << buildability.invalid.size() << " of " << buildability.panels
+                  << " panels cannot be cut as one plate (outlined in red on the sheet): panels "
+                  << buildability.invalid_list() << "; `phedra check " << o->preset
+                  << "` names the cause of each and the field to change\n";
     }
+    context.out << "buildability: " << buildability.summary() << '\n';
   });
 }
 

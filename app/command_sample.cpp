@@ -3,6 +3,9 @@
 #include "commands.h"
 #include "motion_parameters.h"
 #include "support.h"
+#include "buildability_warning.h"
+
+#include <algorithm>
 
 #include <memory>
 
@@ -27,7 +30,12 @@ void add_sample_command(CLI::App& app, Context& context) {
   sub->callback([options, sub, &context] {
     const Design design = load(context, options->preset);
     const std::vector<double> ts = options->parameters.values(sub, design.assembly);
-    emit(motion_json(motion_document(design), ts), options->output, options->preset, context.out);
+    const BuildabilityReport buildability = assess_for_output(design);
+    warn_unless_buildable(context, buildability, *std::min_element(ts.begin(), ts.end()),
+                          *std::max_element(ts.begin(), ts.end()), "");
+    MotionDocument document = motion_document(design);
+    document.buildability = buildability.file_json();
+    emit(motion_json(document, ts), options->output, options->preset, context.out);
   });
 }
 

@@ -1,6 +1,7 @@
 #include "support.h"
 
 #include "phedra/atomic_file.h"
+#include "phedra/preset.h"
 
 #include <ostream>
 
@@ -13,6 +14,13 @@ void add_preset_argument(CLI::App* command, std::string& preset) {
 Design load(Context& context, const std::string& path) {
   context.preset = path;
   return load_design(path);
+}
+
+LoadedDesign load_with_preset(Context& context, const std::string& path) {
+  context.preset = path;
+  const nlohmann::json document = parse_json_text(read_text_file(path));
+  Design design = design_from_json(document);
+  return {preset_object(document), std::move(design)};
 }
 
 void emit(const std::string& content, const std::string& path, const std::string& input, std::ostream& out) {

@@ -4,6 +4,8 @@
 #include "commands.h"
 #include "phedra/design.h"
 
+#include <nlohmann/json.hpp>
+
 #include <iosfwd>
 #include <string>
 
@@ -15,6 +17,13 @@ void add_preset_argument(CLI::App* command, std::string& preset);
 /// Loads and builds the design of a preset file; records the path in the context
 /// so that errors name it.
 Design load(Context& context, const std::string& path);
+
+/// A design with the preset object it was built from (what field hints change).
+struct LoadedDesign {
+  nlohmann::json preset;
+  Design design;
+};
+LoadedDesign load_with_preset(Context& context, const std::string& path);
 
 /// Writes `content` to `path` (temporary file + rename), or to `out` when path
 /// is empty or "-". Refuses to overwrite `input`.

@@ -132,7 +132,9 @@ TEST_CASE("phedra info lists the configuration curve", "[curve][cli]") {
 }
 
 TEST_CASE("glTF --cycle: the whole curve, pass boundaries as keyframes, hinges within tolerance", "[curve][exports]") {
-  for (const char* name : {"default", "parallelogram-tube"}) {
+  // (The default's curve is too long for 250 morph targets at the default
+  // tolerance: generate warns then; all-plus's fits.)
+  for (const char* name : {"all-plus", "parallelogram-tube"}) {
     for (const bool morph : {false, true}) {
       CAPTURE(name, morph);
       const Design d = load_design(std::string(PHEDRA_PRESETS_DIR) + "/" + name + ".json");

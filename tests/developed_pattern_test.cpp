@@ -181,8 +181,17 @@ TEST_CASE("phedra develop: files, no flex, and one error per bad input", "[devel
   REQUIRE(run.code == 0);
   CHECK_THAT(run.out, Contains("t increasing: folds"));
   CHECK_THAT(run.out, Contains("mountain and"));
-  // The folded preset works with the other commands.
-  CHECK(phedra_cli({"check", (dir / "folded.json").string()}).code == 0);
+  // The folded preset works with the other commands. With these strip choices
+  // panels pass through each other: develop warns, check fails on buildability alone.
+  CHECK_THAT(run.err, Contains("warning: the folded P-hedron (strip choices +-+-) is not buildable"));
+  CHECK(phedra_cli({"check", (dir / "folded.json").string(), "--geometry-only"}).code == 0);
+  const auto folded_check = phedra_cli({"check", (dir / "folded.json").string()});
+  CHECK(folded_check.code == 1);
+  CHECK_THAT(folded_check.out, Contains("intersects itself"));
+  // The default choice (++++) folds without collision.
+  const auto plain = phedra_cli({"develop", pattern_file, "-o", (dir / "plain.json").string()});
+  CHECK(plain.err.find("not buildable") == std::string::npos);
+  CHECK(phedra_cli({"check", (dir / "plain.json").string()}).code == 0);
   std::ifstream in(dir / "c.fold");
   CHECK(json::parse(in)["edges_assignment"].size() > 0);
   const auto j = phedra_cli({"develop", pattern_file, "--json"});

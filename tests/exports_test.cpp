@@ -36,7 +36,7 @@ TEST_CASE("panel tree: poses reproduce every configuration, tree hinges stay clo
   for (const std::string preset : {"default", "grid-3x3", "merged-tube", "anti-parallelogram-tube"}) {
     CAPTURE(preset);
     const Design d = design(preset);
-    const AssemblyMesh mesh = d.merge ? merged_mesh(d.assembly) : separate_mesh(d.assembly);
+    const AssemblyMesh mesh = panel_mesh(d);
     const PanelTree tree(mesh.faces, y_up_positions(d, mesh, d.assembly.t_star()));
     const double size = d.assembly.model_size();
     const FlexionInterval& f = d.assembly.flexion_interval();

@@ -37,7 +37,7 @@ TEST_CASE("flat outlines are the panels true to size, hinges pair up, nothing ov
     options.tabs = true;
     options.scale = 7.0;
     const OutlineSheet sheet = flat_outlines(design, options);
-    const AssemblyMesh mesh = design.merge ? merged_mesh(design.assembly) : separate_mesh(design.assembly);
+    const AssemblyMesh mesh = panel_mesh(design);
     const Points x = mesh.positions(design.assembly.evaluate(design.assembly.t_star()));
     REQUIRE(sheet.panels.size() == mesh.faces.size());
     const double size = design.assembly.model_size();

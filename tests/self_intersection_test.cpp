@@ -82,7 +82,7 @@ double normal_angle(const AssemblyMesh& mesh, const Points& x, std::size_t f, st
 
 /// The report's claims, checked independently.
 void check_report(const Design& design, const SelfIntersectionReport& r) {
-  const AssemblyMesh mesh = merged_mesh(design.assembly);
+  const AssemblyMesh mesh = panel_mesh(design);
   const std::vector<bool> valid = valid_panels(design, mesh);
   const double tolerance = 1e-9 * r.model_size;
   CAPTURE(r.t_lambda, r.t_star, r.t_mu, r.free_lower, r.free_upper);
@@ -214,12 +214,17 @@ TEST_CASE("the sweep on every shipped preset: tubes, pairs and arrays", "[self-i
   const SelfIntersectionReport tube = find_self_intersections(load_design(presets + "/parallelogram-tube.json"));
   CHECK(tube.intersection_free());
   CHECK(tube.invalid_panels.empty());
-  // The 3 x 3 grid: two panels of its last cell fold through each other inside the interval.
+  // The shipped presets are buildable: the 3 x 3 grid (interior walls included) is free over its whole interval.
   const SelfIntersectionReport grid = find_self_intersections(load_design(presets + "/grid-3x3.json"));
-  REQUIRE(grid.upper);
-  CHECK(grid.upper->kind == Collision::Kind::hinge);
-  CHECK(grid.free_upper < grid.t_mu - 0.1);
-  CHECK(grid.free_lower == grid.t_lambda);
+  CHECK(grid.intersection_free());
+  // A design whose hinge folds through inside the interval, below t*.
+  const Design partly = load_design(data + "/partly-buildable.json");
+  const SelfIntersectionReport r = find_self_intersections(partly);
+  check_report(partly, r);
+  REQUIRE(r.lower);
+  CHECK(r.lower->kind == Collision::Kind::hinge);
+  CHECK(r.free_lower > r.t_lambda + 0.3 * (r.t_mu - r.t_lambda));
+  CHECK(r.free_upper == r.t_mu);
 }
 
 TEST_CASE("a design that cuts through itself at t*", "[self-intersection]") {
@@ -235,31 +240,35 @@ TEST_CASE("a design that cuts through itself at t*", "[self-intersection]") {
 }
 
 TEST_CASE("phedra intersections: text, JSON and exit codes", "[self-intersection][cli]") {
-  const Run grid = phedra_cli({"intersections", presets + "/grid-3x3.json"});
-  CHECK(grid.code == 0);
-  CHECK_THAT(grid.out, Contains("intersection-free on ["));
-  CHECK_THAT(grid.out, Contains("folds shut and through"));
-  const Run j = phedra_cli({"intersections", presets + "/grid-3x3.json", "--json", "--samples", "50"});
+  const std::string partly = data + "/partly-buildable.json";
+  const Run text = phedra_cli({"intersections", partly});
+  CHECK(text.code == 0);
+  CHECK_THAT(text.out, Contains("intersection-free on ["));
+  CHECK_THAT(text.out, Contains("folds shut and through"));
+  CHECK_THAT(text.out, Contains("buildability: buildable over [") && Contains("only ("));
+  const Run j = phedra_cli({"intersections", partly, "--json", "--samples", "50"});
   REQUIRE(j.code == 0);
   const nlohmann::json report = nlohmann::json::parse(j.out);
   CHECK(report["intersection_free"] == false);
-  CHECK(report["upper"]["kind"] == "hinge");
+  CHECK(report["lower"]["kind"] == "hinge");
   CHECK(report["free_interval"].size() == 2);
   CHECK(report["samples_per_side"] == 50);
+  CHECK(report["buildability"]["buildable_interval"] == report["free_interval"]);
+  CHECK(report["buildability"]["buildable"] == false);
   const Run crossing = phedra_cli({"intersections", data + "/self-intersecting.json"});
   CHECK(crossing.code == 1);
   CHECK_THAT(crossing.out, Contains("the configuration at t* intersects itself"));
   const Run bad = phedra_cli({"intersections", presets + "/grid-3x3.json", "--samples", "0"});
   CHECK(bad.code == 2);
   const Run info = phedra_cli({"info", data + "/self-intersecting.json"});
-  CHECK_THAT(info.out, Contains("self-intersection: panel"));
+  CHECK_THAT(info.out, Contains("buildability:      not buildable") && Contains("penetrate"));
 }
 
 TEST_CASE("generate --no-self-intersection restricts every export to the free interval", "[self-intersection][cli]") {
   const fs::path dir = fs::temp_directory_path() / ("phedra-si-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const SelfIntersectionReport r = find_self_intersections(load_design(presets + "/grid-3x3.json"));
-  const std::string grid = presets + "/grid-3x3.json";
+  const SelfIntersectionReport r = find_self_intersections(load_design(data + "/partly-buildable.json"));
+  const std::string grid = data + "/partly-buildable.json";
   // FOLD frames: --count spreads over the free interval.
   const Run fold = phedra_cli({"generate", grid, "-o", (dir / "g.fold").string(), "--no-self-intersection", "--count", "3"});
   REQUIRE(fold.code == 0);
@@ -277,7 +286,7 @@ TEST_CASE("generate --no-self-intersection restricts every export to the free in
   CHECK(extras["animated_interval"][0].get<double>() == Approx(r.free_lower));
   CHECK(extras["animated_interval"][1].get<double>() == Approx(r.free_upper));
   // A t outside it is refused, naming the option; nothing is written.
-  const double outside = 0.5 * (r.free_upper + r.t_mu);
+  const double outside = 0.5 * (r.free_lower + r.t_lambda);
   const Run out_of = phedra_cli({"generate", grid, "-o", (dir / "x.json").string(), "--no-self-intersection", "--t",
                                  std::to_string(outside)});
   CHECK(out_of.code == 2);

@@ -102,7 +102,7 @@ class Designer {
   val build(const nlohmann::json& document) {
     {
       Design design = design_from_json(document);
-      AssemblyMesh mesh = design.merge ? merged_mesh(design.assembly) : separate_mesh(design.assembly);
+      AssemblyMesh mesh = panel_mesh(design);
       mesh_ = std::move(mesh);
       design_.emplace(std::move(design));
       positions_.assign(3 * mesh_.vertices.size(), 0.0);

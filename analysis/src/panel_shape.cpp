@@ -1,34 +1,9 @@
 #include "phedra/panel_shape.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phedra {
-namespace {
-
-struct Turns {
-  std::array<double, 4> turn{};  ///< signed turn at each corner, along the panel's normal
-  double corner = 0.0;           ///< largest |corner cross product| (twice a corner triangle's area)
-  double edge2 = 0.0;            ///< longest edge, squared
-};
-
-Turns turns_of(const PanelCorners& v) {
-  std::array<Vec3, 4> crosses;
-  Vec3 normal = Vec3::Zero();
-  Turns t;
-  for (int k = 0; k < 4; ++k) {
-    const Vec3 in = v[k] - v[(k + 3) % 4], out = v[(k + 1) % 4] - v[k];
-    crosses[k] = in.cross(out);
-    if (crosses[k].squaredNorm() > normal.squaredNorm()) normal = crosses[k];
-    t.corner = std::max(t.corner, crosses[k].norm());
-    t.edge2 = std::max(t.edge2, out.squaredNorm());
-  }
-  const double n = normal.norm();
-  if (n > 0.0) normal /= n;
-  for (int k = 0; k < 4; ++k) t.turn[k] = normal.dot(crosses[k]);
-  return t;
-}
-
-}  // namespace
 
 std::string to_string(PanelShape shape) {
   switch (shape) {
@@ -40,27 +15,57 @@ std::string to_string(PanelShape shape) {
   return "?";
 }
 
-PanelShape panel_shape(const PanelCorners& corners) {
-  const Turns t = turns_of(corners);
-  if (!(t.corner > 1e-12 * t.edge2)) return PanelShape::degenerate;
-  // A straight corner (turn ~ 0) counts with the majority.
-  const double straight = 1e-12 * t.edge2;
+std::array<double, 4> corner_turns(const PanelCorners& v, const Vec3& normal) {
+  std::array<double, 4> t{};
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 in = v[k] - v[(k + 3) % 4], out = v[(k + 1) % 4] - v[k];
+    t[k] = normal.dot(in.cross(out));
+  }
+  return t;
+}
+
+Vec3 quad_normal(const PanelCorners& v) {
+  Vec3 best = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 cross = (v[k] - v[(k + 3) % 4]).cross(v[(k + 1) % 4] - v[k]);
+    if (cross.squaredNorm() > best.squaredNorm()) best = cross;
+  }
+  const double norm = best.norm();
+  return norm > 0.0 ? Vec3(best / norm) : Vec3::Zero();
+}
+
+PanelShape shape_from_turns(const std::array<double, 4>& turns, double straight, double flat) {
+  if (!(std::max({std::abs(turns[0]), std::abs(turns[1]), std::abs(turns[2]), std::abs(turns[3])}) > flat)) {
+    return PanelShape::degenerate;
+  }
   int negative = 0;
-  for (double turn : t.turn) negative += turn < -straight ? 1 : 0;
+  for (double t : turns) negative += t < -straight ? 1 : 0;
   if (negative == 2) return PanelShape::bow_tie;
   return negative == 0 || negative == 4 ? PanelShape::convex : PanelShape::non_convex;
 }
 
+double longest_edge_squared(const PanelCorners& v) {
+  double e2 = 0.0;
+  for (int k = 0; k < 4; ++k) e2 = std::max(e2, (v[(k + 1) % 4] - v[k]).squaredNorm());
+  return e2;
+}
+
+PanelShape panel_shape(const PanelCorners& corners) {
+  // A straight corner (turn within 1e-12 of the longest edge squared) counts as positive.
+  const double straight = 1e-12 * longest_edge_squared(corners);
+  return shape_from_turns(corner_turns(corners, quad_normal(corners)), straight, straight);
+}
+
 std::array<Triangle, 2> panel_triangles(const PanelCorners& v) {
-  const Turns t = turns_of(v);
+  const std::array<double, 4> turn = corner_turns(v, quad_normal(v));
   // The reflex corner is the one whose turn has the minority sign.
   int positive = 0;
-  for (double turn : t.turn) positive += turn > 0.0 ? 1 : 0;
+  for (double t : turn) positive += t > 0.0 ? 1 : 0;
   int k = 0;
   if (positive == 1 || positive == 3) {
     const bool minority_positive = positive == 1;
     for (int c = 0; c < 4; ++c) {
-      if ((t.turn[c] > 0.0) == minority_positive) k = c;
+      if ((turn[c] > 0.0) == minority_positive) k = c;
     }
   }
   return {Triangle{v[k], v[(k + 1) % 4], v[(k + 2) % 4]}, Triangle{v[k], v[(k + 2) % 4], v[(k + 3) % 4]}};

@@ -67,6 +67,10 @@ Sign Assembly::sign(std::size_t m) const {
   return m == 0 ? base_.input().signs.front() : members_[m].seeded->signs().front();
 }
 
+const std::vector<Sign>& Assembly::signs(std::size_t m) const {
+  return m == 0 ? base_.input().signs : members_[m].seeded->signs();
+}
+
 std::size_t Assembly::total_vertex_count() const {
   std::size_t count = 0;
   for (const Member& m : members_) count += m.topology.vertex_count();

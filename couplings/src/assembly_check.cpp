@@ -119,7 +119,7 @@ nlohmann::json AssemblyCheckReport::to_json() const {
 }
 
 std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
-  out << (r.passed() ? "PASS" : "FAIL") << ": " << r.name << ", " << r.members << (r.members == 1 ? " member" : " members")
+  out << "geometry " << (r.passed() ? "PASS" : "FAIL") << ": " << r.name << ", " << r.members << (r.members == 1 ? " member" : " members")
       << ", " << r.samples << " configurations over [" << format_number(r.t_lambda) << ", " << format_number(r.t_mu)
       << "], tolerance " << format_number(r.tolerance) << " (model size " << format_number(r.model_size) << ")\n";
   if (r.shape_checked) {

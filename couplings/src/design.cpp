@@ -160,6 +160,10 @@ Design load_design(const std::filesystem::path& path) { return design_from_json(
 
 namespace phedra {
 
+AssemblyMesh panel_mesh(const Design& design) {
+  return welded_mesh(design.assembly, design.merge ? SharedWalls::remove : SharedWalls::keep_one);
+}
+
 MotionDocument motion_document(const Design& design) {
   const Assembly& a = design.assembly;
   if (a.member_count() == 1) {
@@ -175,7 +179,7 @@ MotionDocument motion_document(const Design& design) {
   d.t_lambda = a.flexion_interval().lower.t;
   d.t_mu = a.flexion_interval().upper.t;
   for (std::size_t m = 0; m < a.member_count(); ++m) d.members.push_back(a.member_name(m));
-  auto mesh = std::make_shared<AssemblyMesh>(design.merge ? merged_mesh(a) : separate_mesh(a));
+  auto mesh = std::make_shared<AssemblyMesh>(panel_mesh(design));
   for (const VertexRef& r : mesh->vertices) {
     const GridTopology& g = a.topology(r.member);
     d.labels.push_back({r.member, g.row_of(r.vertex), g.column_of(r.vertex)});

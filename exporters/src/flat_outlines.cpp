@@ -3,6 +3,7 @@
 #include "phedra/assembly_mesh.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
+#include "phedra/panel_shape.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,15 +31,6 @@ std::array<Vec2, 4> unfold(const std::array<Vec3, 4>& p) {
   return out;
 }
 
-bool crossed(const std::array<Vec2, 4>& c) {
-  auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
-  auto segments_cross = [&](const Vec2& a, const Vec2& b, const Vec2& p, const Vec2& q) {
-    const double d1 = cross(b - a, p - a), d2 = cross(b - a, q - a), d3 = cross(q - p, a - p), d4 = cross(q - p, b - p);
-    return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
-  };
-  return segments_cross(c[0], c[1], c[2], c[3]) || segments_cross(c[1], c[2], c[3], c[0]);
-}
-
 Vec2 centroid(const FlatPanel& p) { return 0.25 * (p.corners[0] + p.corners[1] + p.corners[2] + p.corners[3]); }
 
 std::string n(double x) { return format_number(std::abs(x) < 1e-12 ? 0.0 : x); }
@@ -64,7 +56,7 @@ OutlineSheet flat_outlines(const Design& design, const OutlineOptions& options) 
   if (!(options.spacing >= 0.0)) throw InvalidInputError("--spacing", "must not be negative");
   if (!(options.scale > 0.0) || !std::isfinite(options.scale)) throw InvalidInputError("--scale", "must be positive");
   const Assembly& a = design.assembly;
-  const AssemblyMesh mesh = design.merge ? merged_mesh(a) : separate_mesh(a);
+  const AssemblyMesh mesh = panel_mesh(design);
   const Points x = mesh.positions(a.evaluate(a.t_star()));
   OutlineSheet sheet;
   sheet.name = a.name();
@@ -89,7 +81,8 @@ OutlineSheet flat_outlines(const Design& design, const OutlineOptions& options) 
     p.column = mesh.face_local[f] % columns;
     p.corners = unfold({x[q[0]], x[q[1]], x[q[2]], x[q[3]]});
     for (Vec2& c : p.corners) c *= options.scale;
-    p.bow_tie = crossed(p.corners);
+    // The same classification as every report (panel_shape.h).
+    p.shape = panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]});
   }
   std::vector<std::pair<std::size_t, std::size_t>> ordered;
   for (const auto& [edge, faces] : edges) {
@@ -168,7 +161,7 @@ std::string outlines_svg(const OutlineSheet& s) {
       << "<g fill=\"none\" stroke=\"black\" stroke-width=\"" << n(s.label_size * 0.08) << "\">\n";
   for (const FlatPanel& p : s.panels) {
     // Cut edges solid, edges under a tab dashed (fold there).
-    svg << "<g id=\"panel-" << p.face << "\"" << (p.bow_tie ? " stroke=\"red\"" : "") << ">";
+    svg << "<g id=\"panel-" << p.face << "\"" << (p.cuttable() ? "" : " stroke=\"red\"") << ">";
     for (int k = 0; k < 4; ++k) {
       const Vec2 a = p.corners[k], b = p.corners[(k + 1) % 4];
       svg << "<line x1=\"" << X(a) << "\" y1=\"" << Y(a) << "\" x2=\"" << X(b) << "\" y2=\"" << Y(b) << "\""
@@ -183,7 +176,7 @@ std::string outlines_svg(const OutlineSheet& s) {
   svg << "</g>\n<g font-family=\"sans-serif\" font-size=\"" << n(s.label_size) << "\" text-anchor=\"middle\">\n";
   for (const FlatPanel& p : s.panels) {
     const Vec2 c = centroid(p);
-    svg << "<text x=\"" << X(c) << "\" y=\"" << Y(c) << "\">P" << p.face << (p.bow_tie ? " (bow-tie)" : "")
+    svg << "<text x=\"" << X(c) << "\" y=\"" << Y(c) << "\">P" << p.face << (p.cuttable() ? std::string() : " (" + to_string(p.shape) + ")")
         << "</text>\n";
     for (int k = 0; k < 4; ++k) {
       if (!p.hinge[k]) continue;

@@ -15,7 +15,10 @@ using nlohmann::json;
 
 struct Hinges {
   std::vector<std::array<std::size_t, 2>> edges;           ///< vertex pairs, as traversed by the first face
-  std::vector<std::array<std::ptrdiff_t, 2>> faces;        ///< the faces on each side (-1: boundary)
+  /// The faces on each edge, in the order met: one on the boundary, two on a
+  /// hinge, three where a wall two cells share meets their sides.
+  std::vector<std::vector<std::size_t>> faces;
+  bool manifold = true;
 };
 
 Hinges hinges_of(const std::vector<Quad>& faces) {
@@ -29,9 +32,10 @@ Hinges hinges_of(const std::vector<Quad>& faces) {
       if (it == index.end()) {
         index[key] = h.edges.size();
         h.edges.push_back({a, b});
-        h.faces.push_back({static_cast<std::ptrdiff_t>(f), -1});
+        h.faces.push_back({f});
       } else {
-        h.faces[it->second][1] = static_cast<std::ptrdiff_t>(f);
+        h.faces[it->second].push_back(f);
+        h.manifold = h.manifold && h.faces[it->second].size() <= 2;
       }
     }
   }
@@ -58,11 +62,13 @@ void fold_state(const Hinges& h, const std::vector<Quad>& faces, const Points& v
   angles = json::array();
   assignment = json::array();
   for (std::size_t e = 0; e < h.edges.size(); ++e) {
-    if (h.faces[e][1] < 0) {
+    if (h.faces[e].size() < 2) {
       angles.push_back(0.0);
       assignment.push_back("B");
       continue;
     }
+    // Three panels on an edge (a shared wall): the angle of the first two, the
+    // sides of the cell the edge belongs to first.
     const Vec3 nf = face_normal(faces[h.faces[e][0]], v), ng = face_normal(faces[h.faces[e][1]], v);
     const double angle = finite(fold_angle_degrees(nf, ng, v[h.edges[e][0]], v[h.edges[e][1]]));
     angles.push_back(angle);
@@ -77,10 +83,10 @@ double fold_angle_degrees(const Vec3& nf, const Vec3& ng, const Vec3& a, const V
   return std::atan2(-nf.cross(ng).dot(edge), nf.dot(ng)) * 180.0 / M_PI;
 }
 
-std::string fold_json(const Design& design, const std::vector<double>& ts) {
+std::string fold_json(const Design& design, const std::vector<double>& ts, const json& buildability) {
   if (ts.empty()) throw InvalidInputError("", "FOLD export needs at least one t");
   const Assembly& a = design.assembly;
-  const AssemblyMesh mesh = design.merge ? merged_mesh(a) : separate_mesh(a);
+  const AssemblyMesh mesh = panel_mesh(design);
   const Hinges h = hinges_of(mesh.faces);
   json fold;
   fold["file_spec"] = 1.2;
@@ -91,7 +97,7 @@ std::string fold_json(const Design& design, const std::vector<double>& ts) {
                              std::to_string(ts.back()) + "]; frame k is the configuration at frame_phedra:t";
   fold["file_classes"] = ts.size() > 1 ? json::array({"animation"}) : json::array({"singleModel"});
   fold["frame_classes"] = {"foldedForm"};
-  fold["frame_attributes"] = {"3D", "manifold"};
+  fold["frame_attributes"] = {"3D", h.manifold ? "manifold" : "nonManifold"};
   fold["frame_unit"] = "unit";
   fold["frame_phedra:t"] = finite(ts.front());
   Points v = mesh.positions(a.evaluate(ts.front()));
@@ -102,7 +108,7 @@ std::string fold_json(const Design& design, const std::vector<double>& ts) {
   json edges = json::array(), edge_faces = json::array();
   for (std::size_t e = 0; e < h.edges.size(); ++e) {
     edges.push_back({h.edges[e][0], h.edges[e][1]});
-    edge_faces.push_back(h.faces[e][1] < 0 ? json{h.faces[e][0], nullptr} : json{h.faces[e][0], h.faces[e][1]});
+    edge_faces.push_back(h.faces[e].size() < 2 ? json{h.faces[e][0], nullptr} : json(h.faces[e]));
   }
   fold["edges_vertices"] = edges;
   fold["edges_faces"] = edge_faces;
@@ -120,6 +126,7 @@ std::string fold_json(const Design& design, const std::vector<double>& ts) {
     frames.push_back(frame);
   }
   if (!frames.empty()) fold["file_frames"] = frames;
+  if (!buildability.is_null()) fold["phedra:buildability"] = buildability;
   return fold.dump() + "\n";
 }
 

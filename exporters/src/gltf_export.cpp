@@ -304,6 +304,25 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   report.keyframes = count;
 }
 
+/// JSON as a glTF extras value (numbers that are whole stay integers).
+tinygltf::Value to_value(const nlohmann::json& j) {
+  if (j.is_object()) {
+    tinygltf::Value::Object o;
+    for (const auto& [key, value] : j.items()) o[key] = to_value(value);
+    return tinygltf::Value(o);
+  }
+  if (j.is_array()) {
+    tinygltf::Value::Array a;
+    for (const auto& value : j) a.push_back(to_value(value));
+    return tinygltf::Value(a);
+  }
+  if (j.is_boolean()) return tinygltf::Value(j.get<bool>());
+  if (j.is_number_integer()) return tinygltf::Value(static_cast<int>(j.get<long long>()));
+  if (j.is_number()) return tinygltf::Value(j.get<double>());
+  if (j.is_string()) return tinygltf::Value(j.get<std::string>());
+  return tinygltf::Value();
+}
+
 /// The node representation: one node per panel on a hinge spanning tree.
 void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
                  const MotionPath& path, const GltfOptions& options, GltfReport& report,
@@ -313,8 +332,8 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   const PanelTree tree(mesh.faces, reference);
   const double size = assembly.model_size();
 
-  // Copies of one place that must stay together: each mesh vertex in all its panels,
-  // and the vertices members share (separate meshes keep one copy per member).
+  // Copies of one place that must stay together: each mesh vertex in all its
+  // panels (the mesh welds the vertices members share).
   std::map<std::size_t, std::vector<std::pair<std::size_t, int>>> by_vertex;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     for (int k = 0; k < 4; ++k) by_vertex[mesh.faces[f][k]].push_back({f, k});
@@ -322,18 +341,6 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   std::vector<std::vector<std::pair<std::size_t, int>>> groups;
   for (auto& [v, copies] : by_vertex) {
     if (copies.size() > 1) groups.push_back(copies);
-  }
-  if (!design.merge) {
-    std::map<std::pair<std::size_t, std::size_t>, std::size_t> mesh_vertex;
-    for (std::size_t v = 0; v < mesh.vertices.size(); ++v) mesh_vertex[{mesh.vertices[v].member, mesh.vertices[v].vertex}] = v;
-    for (const auto& shared : assembly.shared_vertices()) {
-      std::vector<std::pair<std::size_t, int>> group;
-      for (const VertexRef& r : shared) {
-        const auto it = by_vertex.find(mesh_vertex.at({r.member, r.vertex}));
-        if (it != by_vertex.end()) group.push_back(it->second.front());
-      }
-      if (group.size() > 1) groups.push_back(group);
-    }
   }
 
   Keyframes keys;
@@ -472,7 +479,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 
 std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfReport* report) {
   const Assembly& assembly = design.assembly;
-  const AssemblyMesh mesh = design.merge ? merged_mesh(assembly) : separate_mesh(assembly);
+  const AssemblyMesh mesh = panel_mesh(design);
   const MotionPath path = options.cycle ? cycle_path(design, mesh, options) : interval_path(design, mesh, options);
   const double size = assembly.model_size();
   tinygltf::Model model;
@@ -545,6 +552,7 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   check_figures["shared_vertices"] = tinygltf::Value(check.shared.value / size);
   check_figures["samples"] = tinygltf::Value(static_cast<int>(check.samples));
   phedra["check"] = tinygltf::Value(check_figures);
+  if (!options.buildability.is_null()) phedra["buildability"] = to_value(options.buildability);
   tinygltf::Value::Object extras;
   extras["phedra"] = tinygltf::Value(phedra);
   model.asset.extras = tinygltf::Value(extras);

@@ -25,7 +25,7 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
   omlog().disable();
   omout().disable();
   const Assembly& a = design.assembly;
-  const AssemblyMesh mesh = design.merge ? merged_mesh(a) : separate_mesh(a);
+  const AssemblyMesh mesh = panel_mesh(design);
   const Points positions = mesh.positions(a.evaluate(t));
   Mesh out;
   std::vector<Mesh::VertexHandle> handles;
@@ -35,10 +35,13 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
     handles.push_back(out.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
   }
   for (const Quad& q : mesh.faces) {
-    const std::vector<Mesh::VertexHandle> face{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]};
-    if (!out.add_face(face).is_valid()) {
-      throw Error(ExitCode::internal, "OpenMesh refused a face (non-manifold mesh); export a merged or separate design");
-    }
+    std::vector<Mesh::VertexHandle> face{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]};
+    if (out.add_face(face).is_valid()) continue;
+    // A wall two cells share makes its hinges non-manifold (three panels on an
+    // edge): the panel gets its own copies of its corners, at the same places,
+    // so that panel k stays face k of the file.
+    for (Mesh::VertexHandle& h : face) h = out.add_vertex(out.point(h));
+    if (!out.add_face(face).is_valid()) throw Error(ExitCode::internal, "OpenMesh refused a panel");
   }
   std::ostringstream stream;
   OpenMesh::IO::Options options;

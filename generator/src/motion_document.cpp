@@ -80,6 +80,7 @@ std::string motion_json(const MotionDocument& d, const std::vector<double>& ts) 
     out += ",\n\"face_members\":";
     append_indices(out, d.face_members);
   }
+  if (!d.buildability.is_null()) out += ",\n\"buildability\":" + d.buildability.dump();
   out += ",\n\"samples\":[";
   Points vertices;
   for (std::size_t k = 0; k < ts.size(); ++k) {

@@ -20,6 +20,21 @@ using PanelCorners = std::array<Vec3, 4>;
 
 PanelShape panel_shape(const PanelCorners& corners);
 
+/// The longest edge of a quad, squared: the scale of its shape tolerances.
+double longest_edge_squared(const PanelCorners& corners);
+
+/// The signed corner turns <e_{k-1} x e_k, normal> of a quad (corner k between
+/// edge k - 1 and edge k, edge k from corner k to corner k + 1).
+std::array<double, 4> corner_turns(const PanelCorners& corners, const Vec3& normal);
+
+/// The unit normal of a quad from its largest corner cross product (zero for none).
+Vec3 quad_normal(const PanelCorners& corners);
+
+/// The shape class of a quad from its corner turns: all of one sign convex, three
+/// to one non-convex, two to two crossed (a bow-tie); turns within `straight` of
+/// zero count as positive; `degenerate` when no turn exceeds `flat`.
+PanelShape shape_from_turns(const std::array<double, 4>& turns, double straight, double flat);
+
 /// True for convex and non-convex panels.
 inline bool is_valid_panel(PanelShape shape) { return shape == PanelShape::convex || shape == PanelShape::non_convex; }
 

@@ -1,7 +1,8 @@
 #pragma once
 // Self-intersection of a design over its flexion interval (issue 7, item 3).
-// Panels are the faces of the merged mesh (coupled members welded, shared face
-// strips removed). Two kinds of collision:
+// Panels are the distinct panels of panel_mesh(design), numbered as in every
+// exported file: coupled members welded, a wall two cells share tested once
+// (interior walls included). Two kinds of collision:
 //  - panels that cut into each other (non-adjacent panels, and panels that meet
 //    at a corner), triangle by triangle (triangle_overlap.h) with a uniform grid
 //    as broad phase;
@@ -18,6 +19,7 @@
 
 #include "phedra/assembly_mesh.h"
 #include "phedra/design.h"
+#include "phedra/panel_id.h"
 #include "phedra/panel_shape.h"
 
 #include <nlohmann/json.hpp>
@@ -34,14 +36,6 @@ struct SelfIntersectionOptions {
   std::size_t samples_per_side = 200;
   /// Penetration (and hinge closing angle) that counts, relative to the model size.
   double relative_tolerance = 1e-9;
-};
-
-/// One panel of the merged mesh, named as the user knows it.
-struct PanelId {
-  std::size_t face = 0;    ///< index in the merged mesh (the order of exports)
-  std::size_t member = 0;  ///< the member it belongs to
-  std::size_t row = 0;     ///< its strip (profile i to i + 1)
-  std::size_t column = 0;  ///< its column in the member's grid
 };
 
 /// What ends an intersection-free stretch.
@@ -63,6 +57,7 @@ struct SelfIntersectionReport {
   double t_lambda = 0.0, t_mu = 0.0;   ///< the flexion interval
   double free_lower = 0.0, free_upper = 0.0;  ///< the intersection-free sub-interval around t*
   std::optional<Collision> at_t_star;  ///< the input configuration itself intersects
+  double depth_at_t_star = 0.0;        ///< then: how deeply its panels cut into each other (a length)
   std::optional<Collision> lower, upper;  ///< what ends the free interval (empty: the flexion limit)
   std::optional<Collision> lower_contact, upper_contact;  ///< panels that touch at the flexion limit, no earlier
   std::vector<InvalidPanel> invalid_panels;  ///< bow-tie and degenerate panels (left out of the test)
@@ -84,8 +79,14 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
 /// The configuration at t* alone (one snapshot, no sweep): its first collision.
 std::optional<Collision> self_intersection_at_t_star(const Design& design, const SelfIntersectionOptions& options = {});
 
-/// "panel 3 (strip 0, column 3) and panel 9 (strip 1, column 2) penetrate", naming members when there are several.
-std::string describe(const Collision& collision, bool several_members);
+/// "panel 3 (strip 0, column 3) and panel 9 (strip 1, column 2) penetrate", naming
+/// members when there are several; `contact`: a touch at a flexion limit ("touch (no more)").
+std::string describe(const Collision& collision, bool several_members, bool contact = false);
+
+/// Every panel that penetrates another at t, or whose hinge has folded through
+/// on the way from t* to t (tracked over `steps` samples), sorted, each once.
+std::vector<std::size_t> colliding_panels(const Design& design, double t, std::size_t steps = 64,
+                                          const SelfIntersectionOptions& options = {});
 
 /// The intersection-free sub-interval, or InvalidInputError("--no-self-intersection")
 /// when the configuration at t* itself intersects.

@@ -47,10 +47,18 @@ class Assembly {
   bool closed(std::size_t m) const { return members_[m].closed; }
   /// The member's positions at t* (user frame, topology order).
   const Points& reference(std::size_t m) const { return members_[m].reference; }
+  /// The member's axial and general nets and apex heights at t* (canonical frame,
+  /// rows x n without boundary columns): the nets MATH.md section 9 reads panel
+  /// shapes from.
+  const NetState& reference_state(std::size_t m) const {
+    return m == 0 ? base_reference_ : members_[m].seeded->reference_state();
+  }
   /// The member's apex heights T_0..T_n at t* (user frame).
   std::vector<double> apex_heights(std::size_t m) const;
   /// The member's sign (members use one sign; the base's first sign).
   Sign sign(std::size_t m) const;
+  /// The member's signs s_1..s_{n-1} (the sign of apex S_{j+1} is entry j).
+  const std::vector<Sign>& signs(std::size_t m) const;
   /// How member m (>= 1) is attached.
   const Seed& seed(std::size_t m) const { return members_[m].seeded->seed(); }
   std::size_t total_vertex_count() const;

@@ -30,6 +30,17 @@ Design load_design(const std::filesystem::path& path);
 
 }  // namespace phedra
 
+#include "phedra/assembly_mesh.h"
+
+namespace phedra {
+
+/// The distinct panels of a design: the mesh of every export and report, whose
+/// face indices are the panel numbers users see. Shared vertices welded; a wall
+/// two members share is one panel of both, or deleted when the preset merges.
+AssemblyMesh panel_mesh(const Design& design);
+
+}  // namespace phedra
+
 #include "phedra/motion_document.h"
 
 namespace phedra {

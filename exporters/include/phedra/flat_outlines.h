@@ -10,6 +10,7 @@
 // gets one tab, on the panel with the lower id: glue it under the other panel.
 
 #include "phedra/design.h"
+#include "phedra/panel_shape.h"
 
 #include <array>
 #include <optional>
@@ -30,7 +31,8 @@ struct FlatPanel {
   std::array<Vec2, 4> corners;                     ///< placed on the sheet (mesh corner order)
   std::array<std::optional<std::size_t>, 4> hinge;  ///< edge k (corner k to k + 1): its hinge id, if any
   std::array<bool, 4> tab{};                       ///< edge k carries the hinge's tab
-  bool bow_tie = false;                            ///< two edges cross: flagged on the sheet
+  PanelShape shape = PanelShape::convex;           ///< a bow-tie or degenerate one is flagged on the sheet
+  bool cuttable() const { return is_valid_panel(shape); }
 };
 
 struct OutlineSheet {

@@ -7,14 +7,17 @@
 
 #include "phedra/design.h"
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
 namespace phedra {
 
-/// The FOLD JSON text for the given t (at least one). Throws Error(internal)
-/// rather than write a non-finite number.
-std::string fold_json(const Design& design, const std::vector<double>& ts);
+/// The FOLD JSON text for the given t (at least one); `buildability` (when not
+/// null) is stored as "phedra:buildability". Throws Error(internal) rather than
+/// write a non-finite number.
+std::string fold_json(const Design& design, const std::vector<double>& ts, const nlohmann::json& buildability = nullptr);
 
 /// Fold angle in degrees of the hinge a-b between faces f (traversing a->b) and g,
 /// from their unit normals: positive for a valley, negative for a mountain.

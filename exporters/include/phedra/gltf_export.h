@@ -8,6 +8,8 @@
 #include "phedra/design.h"
 #include "phedra/keyframes.h"
 
+#include <nlohmann/json.hpp>
+
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -37,6 +39,9 @@ struct GltfOptions {
   std::size_t max_morph_targets = 250;
   KeyframeOptions keyframes;
   KeyframeProgress progress;  ///< called while the keyframes are chosen (node representation)
+  /// Stored as asset.extras.phedra.buildability when not null
+  /// (BuildabilityReport::file_json()): what every export says about the design.
+  nlohmann::json buildability;
 };
 
 struct GltfReport {

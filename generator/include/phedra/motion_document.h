@@ -9,6 +9,8 @@
 #include "phedra/grid_topology.h"
 #include "phedra/vector_types.h"
 
+#include <nlohmann/json.hpp>
+
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,6 +31,8 @@ struct MotionDocument {
   std::vector<std::size_t> face_members;        ///< empty for a single P-hedron
   /// Fills the positions of every vertex at t (throws outside the interval).
   std::function<void(double, Points&)> positions;
+  /// Written as "buildability" when not null (what every export says of the design).
+  nlohmann::json buildability;
 };
 
 /// The document of one P-hedron: labels [i, c] in its grid.

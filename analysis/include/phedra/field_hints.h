@@ -1,0 +1,41 @@
+#pragma once
+// Which preset field moves a panel towards a simple shape, and which way: the
+// derivative of the panel's corner turns (general net, t*) with respect to each
+// numeric field of the preset, by central differences of the whole
+// construction. The change that brings a corner turn to zero, to first order,
+// is the hint; the smallest one relative to the field's scale comes first.
+
+#include "phedra/assembly_mesh.h"
+#include "phedra/design.h"
+#include "phedra/panel_diagnosis.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+/// A numeric field of a preset a user may change to reshape panels.
+struct DesignField {
+  enum class Group { heights, trajectory, directions };
+  std::string name;                  ///< "apex_heights[3]", "trajectory[5][2]", "couplings[1].free_height"
+  nlohmann::json::json_pointer pointer;
+  Group group = Group::heights;
+  std::optional<std::size_t> row;    ///< the trajectory point or direction it belongs to
+  double scale = 1.0;                ///< the length its changes are measured against
+};
+
+/// The length fields of a preset: apex heights of every kind (core, tube, grid,
+/// row, couplings), trajectory coordinates (polyline points, spline control
+/// points, helix centre, radius and rise) and direction coordinates.
+std::vector<DesignField> design_fields(const nlohmann::json& preset, double model_size);
+
+/// Hints for each of `faces` (member faces of `design`, built from `preset`):
+/// up to two, from different field groups, best first. Trajectory and direction
+/// fields are tried only within one row of a face's strip.
+std::vector<std::vector<FieldHint>> field_hints(const nlohmann::json& preset, const Design& design,
+                                                const std::vector<MemberFace>& faces);
+
+}  // namespace phedra

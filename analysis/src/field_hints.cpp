@@ -1,0 +1,181 @@
+#include "phedra/field_hints.h"
+
+#include "phedra/errors.h"
+#include "phedra/panel_nets.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace phedra {
+namespace {
+
+using json = nlohmann::json;
+using Pointer = json::json_pointer;
+
+void add_numbers(std::vector<DesignField>& out, const json& array, const Pointer& at, const std::string& name,
+                 DesignField::Group group, double scale) {
+  if (!array.is_array()) return;
+  for (std::size_t k = 0; k < array.size(); ++k) {
+    if (array[k].is_number()) out.push_back({name + "[" + std::to_string(k) + "]", at / k, group, std::nullopt, scale});
+  }
+}
+
+/// Points [[x, y, z], ...]: one field per coordinate, rows = point indices.
+void add_points(std::vector<DesignField>& out, const json& points, const Pointer& at, const std::string& name,
+                DesignField::Group group, double model_size, bool rows) {
+  if (!points.is_array()) return;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const json& p = points[i];
+    if (!p.is_array()) continue;
+    double scale = model_size;
+    if (group == DesignField::Group::directions) {
+      double norm2 = 0.0;
+      for (const json& c : p) norm2 += c.is_number() ? c.get<double>() * c.get<double>() : 0.0;
+      scale = std::sqrt(norm2) > 0.0 ? std::sqrt(norm2) : 1.0;
+    }
+    for (std::size_t c = 0; c < p.size(); ++c) {
+      if (!p[c].is_number()) continue;
+      out.push_back({name + "[" + std::to_string(i) + "][" + std::to_string(c) + "]", at / i / c, group,
+                     rows ? std::optional<std::size_t>(i) : std::nullopt, scale});
+    }
+  }
+}
+
+/// The corner turns of a member face's general net (canonical), along `normal`,
+/// over model_size^2: what a field moves.
+std::array<double, 4> turns(const Assembly& a, const MemberFace& f, const Vec3& normal, double size2) {
+  std::array<double, 4> t = corner_turns(panel_nets(a, f.member, f.local).general, normal);
+  for (double& v : t) v /= size2;
+  return t;
+}
+
+}  // namespace
+
+std::vector<DesignField> design_fields(const json& preset, double model_size) {
+  std::vector<DesignField> out;
+  const Pointer root;
+  const auto heights = DesignField::Group::heights;
+  if (preset.contains("apex_heights")) add_numbers(out, preset["apex_heights"], root / "apex_heights", "apex_heights", heights, model_size);
+  if (preset.contains("tube") && preset["tube"].is_object() && preset["tube"].contains("apex_heights")) {
+    add_numbers(out, preset["tube"]["apex_heights"], root / "tube" / "apex_heights", "tube.apex_heights", heights, model_size);
+  }
+  if (preset.contains("grid") && preset["grid"].is_object()) {
+    for (const char* key : {"u_heights", "w_heights"}) {
+      if (preset["grid"].contains(key)) {
+        add_numbers(out, preset["grid"][key], root / "grid" / key, std::string("grid.") + key, heights, model_size);
+      }
+    }
+  }
+  if (preset.contains("row") && preset["row"].is_object() && preset["row"].contains("free_heights")) {
+    add_numbers(out, preset["row"]["free_heights"], root / "row" / "free_heights", "row.free_heights", heights, model_size);
+  }
+  if (preset.contains("couplings") && preset["couplings"].is_array()) {
+    const json& list = preset["couplings"];
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      if (!list[k].is_object()) continue;
+      const std::string name = "couplings[" + std::to_string(k) + "]";
+      if (list[k].contains("free_heights")) {
+        add_numbers(out, list[k]["free_heights"], root / "couplings" / k / "free_heights", name + ".free_heights", heights, model_size);
+      }
+      if (list[k].contains("free_height") && list[k]["free_height"].is_number()) {
+        out.push_back({name + ".free_height", root / "couplings" / k / "free_height", heights, std::nullopt, model_size});
+      }
+    }
+  }
+  const auto trajectory = DesignField::Group::trajectory;
+  if (preset.contains("trajectory")) {
+    const json& t = preset["trajectory"];
+    if (t.is_array()) {
+      add_points(out, t, root / "trajectory", "trajectory", trajectory, model_size, true);
+    } else if (t.is_object() && t.contains("spline") && t["spline"].is_object() && t["spline"].contains("control_points")) {
+      add_points(out, t["spline"]["control_points"], root / "trajectory" / "spline" / "control_points",
+                 "trajectory.spline.control_points", trajectory, model_size, false);
+    } else if (t.is_object() && t.contains("helix") && t["helix"].is_object()) {
+      const json& h = t["helix"];
+      for (const char* key : {"radius", "rise_per_turn"}) {
+        if (h.contains(key) && h[key].is_number()) {
+          out.push_back({std::string("trajectory.helix.") + key, root / "trajectory" / "helix" / key, trajectory, std::nullopt, model_size});
+        }
+      }
+    }
+  }
+  if (preset.contains("directions") && preset["directions"].is_array()) {
+    add_points(out, preset["directions"], root / "directions", "directions", DesignField::Group::directions, model_size, true);
+  }
+  return out;
+}
+
+std::vector<std::vector<FieldHint>> field_hints(const json& preset, const Design& design,
+                                                const std::vector<MemberFace>& faces) {
+  const Assembly& a = design.assembly;
+  const double size = a.model_size(), size2 = size * size;
+  std::vector<Vec3> normals;
+  std::vector<std::array<double, 4>> at_star;
+  std::vector<std::size_t> strips;
+  for (const MemberFace& f : faces) {
+    const PanelNets nets = panel_nets(a, f.member, f.local);
+    normals.push_back(quad_normal(nets.general));
+    at_star.push_back(turns(a, f, normals.back(), size2));
+    strips.push_back(nets.row);
+  }
+  struct Best {
+    double cost = std::numeric_limits<double>::infinity();
+    FieldHint hint;
+  };
+  // Per face and field group: the smallest change (relative to the field's scale).
+  std::vector<std::array<Best, 3>> best(faces.size());
+  for (const DesignField& field : design_fields(preset, size)) {
+    std::vector<std::size_t> affected;
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      // A face of strip i lies between profiles i and i + 1: trajectory points and
+      // directions i - 1 .. i + 2 shape it most directly.
+      if (!field.row || (*field.row + 1 >= strips[k] && *field.row <= strips[k] + 2)) affected.push_back(k);
+    }
+    if (affected.empty()) continue;
+    const double value = preset.at(field.pointer).get<double>();
+    const double h = 1e-6 * std::max(std::abs(value), field.scale);
+    std::array<std::vector<std::array<double, 4>>, 2> sides;
+    bool built = true;
+    for (int side = 0; side < 2 && built; ++side) {
+      json changed = preset;
+      changed.at(field.pointer) = value + (side == 0 ? h : -h);
+      try {
+        const Design d = design_from_json(changed);
+        for (std::size_t k : affected) {
+          if (faces[k].member >= d.assembly.member_count() ||
+              d.assembly.topology(faces[k].member).face_count() != a.topology(faces[k].member).face_count()) {
+            built = false;
+            break;
+          }
+          sides[side].push_back(turns(d.assembly, faces[k], normals[k], size2));
+        }
+      } catch (const Error&) {
+        built = false;  // the change breaks an assumption (or a smooth curve's chord count changes)
+      }
+    }
+    if (!built) continue;
+    for (std::size_t e = 0; e < affected.size(); ++e) {
+      const std::size_t k = affected[e];
+      for (int c = 0; c < 4; ++c) {
+        const double slope = (sides[0][e][c] - sides[1][e][c]) / (2.0 * h);
+        if (!(std::abs(slope) > 1e-12)) continue;
+        const double change = -at_star[k][c] / slope;
+        const double cost = std::abs(change) / field.scale;
+        Best& b = best[k][static_cast<int>(field.group)];
+        if (std::isfinite(change) && cost < b.cost) b = {cost, {field.name, value, change}};
+      }
+    }
+  }
+  std::vector<std::vector<FieldHint>> out(faces.size());
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    std::array<Best, 3> b = best[k];
+    std::sort(b.begin(), b.end(), [](const Best& x, const Best& y) { return x.cost < y.cost; });
+    for (int g = 0; g < 2; ++g) {
+      if (std::isfinite(b[g].cost)) out[k].push_back(b[g].hint);
+    }
+  }
+  return out;
+}
+
+}  // namespace phedra
