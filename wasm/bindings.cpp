@@ -5,6 +5,7 @@
 
 #include "phedra/assembly_check.h"
 #include "phedra/assembly_mesh.h"
+#include "phedra/buildability.h"
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
@@ -201,6 +202,90 @@ class Designer {
     return v;
   }
 
+  /// Whether the design can be built (docs/design.md): the panels' shapes with
+  /// their causes, and with `sweep` the collision sweep of the motion
+  /// (`samples` a side) and field hints for the first `hinted` invalid panels.
+  /// {ok, buildable, summary, panels, bow_tie, degenerate, shape_margin,
+  /// self_crossing, swept, interval: [a, b] or null, t_lambda, t_mu,
+  /// invalid: [{panel, shape, cause, why, hints: [text]}]}.
+  val buildability(bool sweep, int samples, int hinted) {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      BuildabilityOptions options;
+      options.sweep_motion = sweep;
+      options.sweep.samples_per_side = static_cast<std::size_t>(std::max(1, samples));
+      options.diagnosis.hints = hinted > 0;
+      options.diagnosis.max_hinted_panels = static_cast<std::size_t>(std::max(0, hinted));
+      const BuildabilityReport r = assess_buildability(*design_, &preset_object(document_), options);
+      val v = val::object();
+      v.set("ok", true);
+      v.set("buildable", r.buildable());
+      v.set("summary", r.summary());
+      v.set("panels", static_cast<double>(r.panels));
+      v.set("bow_tie", static_cast<double>(r.count(PanelShape::bow_tie)));
+      v.set("degenerate", static_cast<double>(r.count(PanelShape::degenerate)));
+      v.set("shape_margin", r.shape_margin);
+      v.set("self_crossing", !r.self_crossing_members.empty());
+      v.set("swept", r.swept);
+      v.set("t_lambda", r.t_lambda);
+      v.set("t_mu", r.t_mu);
+      const auto range = r.interval();
+      if (range) {
+        val interval = val::array();
+        interval.call<void>("push", range->first);
+        interval.call<void>("push", range->second);
+        v.set("interval", interval);
+      } else {
+        v.set("interval", val::null());
+      }
+      val invalid = val::array();
+      for (const PanelDiagnosis& d : r.invalid) {
+        val p = val::object();
+        p.set("panel", static_cast<double>(d.panel));
+        p.set("shape", to_string(d.shape));
+        p.set("cause", to_string(d.rule.cause));
+        p.set("why", d.why);
+        val hints = val::array();
+        for (const FieldHint& h : d.hints) hints.call<void>("push", describe(h));
+        p.set("hints", hints);
+        invalid.call<void>("push", p);
+      }
+      v.set("invalid", invalid);
+      return v;
+    } catch (const Error& e) {
+      return failure("", e.what());
+    }
+  }
+
+  /// The panels that are not simple (bow-ties, degenerate): cheap enough for
+  /// every drag step (one evaluation at t*). A view into the module's memory.
+  val invalidPanels() {
+    if (!design_) return failure("", "no design loaded");
+    const Assembly& a = design_->assembly;
+    a.evaluate(a.t_star(), configuration_);
+    const Points x = mesh_.positions(configuration_);
+    invalid_.clear();
+    for (std::size_t f = 0; f < mesh_.faces.size(); ++f) {
+      const Quad& q = mesh_.faces[f];
+      if (!is_valid_panel(panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]}))) invalid_.push_back(static_cast<std::uint32_t>(f));
+    }
+    return val(emscripten::typed_memory_view(invalid_.size(), invalid_.data()));
+  }
+
+  /// The panels that penetrate another at t, or whose hinge has folded through
+  /// on the way from t* (the designer colours them): a view into the module's
+  /// memory valid until the next call.
+  val collisions(double t) {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      const std::vector<std::size_t> panels = colliding_panels(*design_, t, 32);
+      collisions_.assign(panels.begin(), panels.end());
+    } catch (const Error& e) {
+      return failure("t", e.what());
+    }
+    return val(emscripten::typed_memory_view(collisions_.size(), collisions_.data()));
+  }
+
   /// The animated .glb of the design, as `phedra generate -o X.glb` writes it
   /// (`morph`: morph targets instead of a node per panel; `cycle`: the whole
   /// configuration curve). A view into the module's memory: copy it at once.
@@ -210,6 +295,7 @@ class Designer {
       GltfOptions options;
       options.morph = morph;
       options.cycle = cycle;
+      options.buildability = file_buildability();
       glb_ = gltf_bytes(*design_, options);
     } catch (const Error& e) {
       return failure("", e.what());
@@ -224,10 +310,17 @@ class Designer {
     const FlexionInterval& f = design_->assembly.flexion_interval();
     const int n = std::max(2, count);
     for (int k = 0; k < n; ++k) ts.push_back(k + 1 == n ? f.upper.t : f.lower.t + (f.upper.t - f.lower.t) * k / (n - 1));
-    return fold_json(*design_, ts);
+    return fold_json(*design_, ts, file_buildability());
   }
 
  private:
+  /// What the files store, as the command computes it (no field hints).
+  nlohmann::json file_buildability() const {
+    BuildabilityOptions options;
+    options.diagnosis.hints = false;
+    return assess_buildability(*design_, nullptr, options).file_json();
+  }
+
   std::optional<Design> design_;
   nlohmann::json document_;  ///< the preset of design_
   AssemblyMesh mesh_;
@@ -235,6 +328,7 @@ class Designer {
   std::vector<double> positions_;
   std::vector<std::uint32_t> faces_;
   std::vector<double> apexes_;
+  std::vector<std::uint32_t> collisions_, invalid_;
   std::string glb_;
 };
 
@@ -251,6 +345,9 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("evaluate", &Designer::evaluate)
       .function("apexes", &Designer::apexes)
       .function("check", &Designer::check)
+      .function("buildability", &Designer::buildability)
+      .function("collisions", &Designer::collisions)
+      .function("invalidPanels", &Designer::invalidPanels)
       .function("glb", &Designer::glb)
       .function("fold", &Designer::fold);
 }

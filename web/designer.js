@@ -15,9 +15,13 @@ const format = (x) => (Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : x.to
 const { renderer, scene, camera, controls } = createStage({ antialias: false });
 camera.up.set(0, 0, 1);  // presets are z-up
 
-const surface = new THREE.Mesh(new THREE.BufferGeometry(),
-  // Lambert: the matte look of a rough standard material at a fraction of its cost per pixel.
-  new THREE.MeshLambertMaterial({ color: 0x7fb3e0, side: THREE.DoubleSide, flatShading: true }));
+// Lambert: the matte look of a rough standard material at a fraction of its cost per pixel.
+// Panels by validity (docs/design.md, Buildable designs): simple, not simple
+// (a bow-tie or degenerate: cannot be cut as one plate), penetrating another
+// panel (or folded through its hinge) at the slider's t.
+const validityColours = { simple: 0x7fb3e0, invalid: 0xe53935, colliding: 0xff9800 };
+const surface = new THREE.Mesh(new THREE.BufferGeometry(), ['simple', 'invalid', 'colliding'].map((k) =>
+  new THREE.MeshLambertMaterial({ color: validityColours[k], side: THREE.DoubleSide, flatShading: true })));
 const edges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x20303f }));
 scene.add(surface, edges);
 const handles = new THREE.Group();
@@ -98,6 +102,9 @@ let fraction = 0.5;         // slider position in [0, 1]
 let faces = null;           // Uint32Array of quads
 let failure = null;         // the last refused edit: {field, message}
 let figures = null;
+let invalidPanels = new Set();    // not simple (the shape is a constant of the design)
+let collidingPanels = new Set();  // penetrating at the slider's t
+let buildability = null;          // designer.buildability(...) of the shown design (null while it is computed)
 
 const clone = (o) => JSON.parse(JSON.stringify(o));
 const axisOf = (p) => new THREE.Vector3(...(p.axis || [0, 0, 1])).normalize();
@@ -115,6 +122,8 @@ function apply(candidate, { keepFigures = false } = {}) {
   preset = candidate;
   info = designer.info();
   faces = Uint32Array.from(designer.faces());
+  invalidPanels = new Set(Array.from(designer.invalidPanels()));
+  collidingPanels = new Set();
   sizeHandles();
   rebuildGeometry();
   placeHandles();
@@ -139,6 +148,7 @@ function rebuildGeometry() {
   geometry.setIndex(index);
   surface.geometry.dispose();
   surface.geometry = geometry;
+  colourPanels();
   const lineGeometry = new THREE.BufferGeometry();
   lineGeometry.setAttribute('position', geometry.getAttribute('position'));
   lineGeometry.setIndex(lines);
@@ -161,6 +171,53 @@ function updatePositions() {
   surface.geometry.computeBoundingSphere();
   $('t').textContent = format(t);
   requestRender();
+}
+
+/// Orders the triangles by validity (simple, not simple, colliding) and gives
+/// each range its material: one draw call a colour.
+function colourPanels() {
+  const geometry = surface.geometry;
+  if (!faces) return;
+  const order = [[], [], []];
+  for (let f = 0; f < faces.length / 4; ++f) {
+    const kind = collidingPanels.has(f) ? 2 : invalidPanels.has(f) ? 1 : 0;
+    const [a, b, c, d] = faces.subarray(4 * f, 4 * f + 4);
+    order[kind].push(a, b, c, a, c, d);
+  }
+  geometry.setIndex([...order[0], ...order[1], ...order[2]]);
+  geometry.clearGroups();
+  let start = 0;
+  order.forEach((list, k) => {
+    if (list.length) geometry.addGroup(start, list.length, k);
+    start += list.length;
+  });
+  requestRender();
+}
+
+const sameSet = (a, b) => a.size === b.size && [...a].every((x) => b.has(x));
+
+/// The panels that are not simple, from the core (cheap: every drag step).
+function updateInvalidPanels() {
+  const list = designer.invalidPanels();
+  const next = new Set(list.ok === false ? [] : Array.from(list));
+  if (!sameSet(next, invalidPanels)) {
+    invalidPanels = next;
+    colourPanels();
+  }
+}
+
+/// The panels that collide at the slider's t (after the slider or an edit settles).
+let collisionTimer = null;
+function scheduleCollisions() {
+  clearTimeout(collisionTimer);
+  collisionTimer = setTimeout(() => {
+    const list = designer.collisions(tOf(fraction));
+    const next = new Set(list.ok === false ? [] : Array.from(list));
+    if (!sameSet(next, collidingPanels)) {
+      collidingPanels = next;
+      colourPanels();
+    }
+  }, 60);
 }
 
 // --- handles ---------------------------------------------------------------
@@ -357,14 +414,28 @@ function screenOf(position) {
 }
 
 // --- messages and panel ----------------------------------------------------
+/// The status when the last edit was accepted: what the buildability report
+/// says ("buildable over [a, b]", or what is wrong), never just "valid".
+function statusText() {
+  if (buildability) return buildability.summary;
+  if (invalidPanels.size) {
+    const list = [...invalidPanels].slice(0, 8).join(', ') + (invalidPanels.size > 8 ? ', …' : '');
+    return `not buildable: ${invalidPanels.size} of ${info.faces} panels cannot be cut as one plate (panels ${list})`;
+  }
+  return 'every panel is simple; checking the motion for collisions…';
+}
+
 function showMessage() {
   const message = $('message'), label = $('label');
   if (!failure) {
-    message.textContent = 'valid';
+    message.textContent = statusText();
     message.classList.remove('error');
+    message.classList.toggle('buildable', Boolean(buildability && buildability.buildable));
+    message.classList.toggle('unbuildable', Boolean(invalidPanels.size || (buildability && !buildability.buildable)));
     label.hidden = true;
     return;
   }
+  message.classList.remove('buildable', 'unbuildable');
   const text = failure.field ? `${failure.field}: ${failure.message}` : failure.message;
   message.textContent = text;
   message.classList.add('error');
@@ -426,10 +497,54 @@ function updatePanel() {
   }
 }
 
+/// The buildable part of the interval on the bar under the slider, and why not.
+function showBuildability() {
+  const bar = $('buildable-part');
+  const range = info.t_mu - info.t_lambda;
+  const b = buildability;
+  if (b && b.interval && range > 0) {
+    bar.hidden = false;
+    bar.style.left = `${(100 * (b.interval[0] - info.t_lambda)) / range}%`;
+    bar.style.width = `${Math.max(0.5, (100 * (b.interval[1] - b.interval[0])) / range)}%`;
+    bar.title = `buildable over [${format(b.interval[0])}, ${format(b.interval[1])}]`;
+  } else {
+    bar.hidden = true;
+  }
+  const why = $('why'), list = $('why-list');
+  list.textContent = '';
+  const invalid = b ? b.invalid : [];
+  why.hidden = invalid.length === 0;
+  $('why-count').textContent = `${invalid.length} panel${invalid.length === 1 ? '' : 's'} cannot be cut as one plate: why, and what to change`;
+  for (const p of invalid.slice(0, 12)) {
+    const item = document.createElement('li');
+    item.textContent = `panel ${p.panel} (${p.shape}): ${p.why}`;
+    for (const h of p.hints) {
+      const hint = document.createElement('div');
+      hint.className = 'change';
+      hint.textContent = `change: ${h}`;
+      item.append(hint);
+    }
+    list.append(item);
+  }
+  if (invalid.length > 12) {
+    const more = document.createElement('li');
+    more.textContent = `… and ${invalid.length - 12} more (phedra check --json lists them all)`;
+    list.append(more);
+  }
+}
+
 let figuresTimer = null;
 function scheduleFigures() {
   clearTimeout(figuresTimer);
+  buildability = null;
+  showBuildability();
+  showMessage();
   figuresTimer = setTimeout(() => {
+    buildability = designer.buildability(true, 100, 8);
+    if (buildability.ok === false) buildability = null;
+    showBuildability();
+    showMessage();
+    scheduleCollisions();
     figures = designer.check(41);
     const closure = figures.closed ? `, closure ${format(figures.closure)}` : '';
     $('figures').textContent = `over the interval: planarity ${format(figures.planarity)}, isometry ${format(figures.isometry)}${closure} (of the model size)` +
@@ -507,6 +622,12 @@ function applyEdit(edit) {
   failure = null;
   setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
   info = designer.info();
+  buildability = null;  // the sweep follows when the drag ends (settle)
+  updateInvalidPanels();
+  if (collidingPanels.size) {
+    collidingPanels = new Set();
+    colourPanels();
+  }
   updatePositions();
   placeHandles();
   updateLabels();
@@ -525,6 +646,7 @@ function settle() {
 $('slider').addEventListener('input', (e) => {
   fraction = Number(e.target.value) / 1000;
   updatePositions();
+  scheduleCollisions();
 });
 
 /// The mode a preset is in (the mode selector's value).
@@ -729,6 +851,20 @@ window.phedraDesigner = {
   },
   apply: (p) => apply(p),
   figures: () => figures,
+  /// The last buildability report (null while it is computed), the panels shown
+  /// red (not simple) and orange (colliding at the slider's t).
+  buildability: () => buildability,
+  invalidPanels: () => [...invalidPanels].sort((a, b) => a - b),
+  collidingPanels: () => [...collidingPanels].sort((a, b) => a - b),
+  /// Moves the slider to t (as a user would) and waits for the colours.
+  setT: (t) => {
+    fraction = Math.min(1, Math.max(0, (t - info.t_lambda) / (info.t_mu - info.t_lambda)));
+    $('slider').value = String(Math.round(fraction * 1000));
+    $('slider').dispatchEvent(new Event('input'));
+  },
+  /// The bar of the buildable part: [left, width] in % of the slider, or null.
+  buildableBar: () => ($('buildable-part').hidden ? null : [parseFloat($('buildable-part').style.left), parseFloat($('buildable-part').style.width)]),
+  whyText: () => ($('why').hidden ? '' : $('why-list').textContent),
   glbSize: () => glbBytes().byteLength,
   fold: () => designer.fold(5),
   /// Records every animation frame (its start, the time its work took, whether it

@@ -148,11 +148,12 @@ class CollisionDetector {
     return out;
   }
 
-  /// The mesh faces of both panels of every hinge whose (continued) opening has closed.
+  /// The mesh faces of both panels of every hinge whose (continued) opening has
+  /// passed through 0 or 360 degrees (folded through; folded flat is contact).
   std::vector<std::size_t> hinge_panels(const std::vector<double>& openings) const {
     std::vector<std::size_t> out;
     for (std::size_t k = 0; k < openings.size(); ++k) {
-      if (openings[k] <= angle_tolerance || openings[k] >= two_pi - angle_tolerance) {
+      if (openings[k] < -angle_tolerance || openings[k] > two_pi + angle_tolerance) {  // through, not touching
         out.push_back(valid_[hinges_[k].a]);
         out.push_back(valid_[hinges_[k].b]);
       }

@@ -84,6 +84,22 @@ function checkPreset(name) {
   if (!check.passed || !(check.planarity < 1e-9) || !(check.isometry < 1e-9)) fail(`${name}: check ${JSON.stringify(check)}`);
   const fold = JSON.parse(designer.fold(5));
   if (fold.file_frames.length !== 4) fail(`${name}: FOLD has ${fold.file_frames.length + 1} frames`);
+  // Buildability: the same verdict, counts, panels and buildable interval as
+  // `phedra info` (numbers in the text may differ in the last digit: libm).
+  const built = designer.buildability(true, 200, 0);
+  const cli = JSON.parse(run(["info", file, "--json"])).buildability;
+  const words = (text) => text.replace(/-?[0-9][0-9.e+-]*/g, "#");
+  const sameInterval = (a, b) => (a === null && b === null) ||
+    (a !== null && b !== null && a.every((x, k) => Math.abs(x - b[k]) <= 1e-9 * (hi - lo)));
+  for (const [what, other] of [["core", built], ["FOLD", fold["phedra:buildability"]]]) {
+    const panels = what === "core" ? other.invalid.map((p) => p.panel) : other.invalid_panels;
+    const interval = what === "core" ? other.interval : other.buildable_interval;
+    if (other.buildable !== cli.buildable || words(other.summary) !== words(cli.summary) || other.bow_tie !== cli.bow_tie ||
+        other.panels !== cli.panels || JSON.stringify(panels) !== JSON.stringify(cli.invalid_panels) ||
+        !sameInterval(interval, cli.buildable_interval)) {
+      fail(`${name}: ${what} buildability ${JSON.stringify(other).slice(0, 300)} != ${JSON.stringify(cli).slice(0, 300)}`);
+    }
+  }
   console.log(`ok ${name}: ${info.kind}, ${info.vertices} vertices, largest difference ${worst} (${worstAtLimits} at the limits)`);
 }
 

@@ -27,6 +27,19 @@ try {
   await page.waitForFunction(() => window.phedraDesigner?.ready === true, null, { timeout: 30000 });
   await page.waitForTimeout(300);
   const api = (f, ...args) => page.evaluate(f, ...args);
+  // The status line after an accepted edit is the design's buildability, never just "valid".
+  const status = () => api(() => window.phedraDesigner.message());
+  const accepted = async () => {
+    const text = await status();
+    return !(await page.$eval('#message', (e) => e.classList.contains('error'))) && text !== 'valid' &&
+      /^(buildable over|not buildable|every panel is simple)/.test(text);
+  };
+  /// Waits for the buildability report (computed once an edit settles).
+  const settled = async () => {
+    await page.waitForFunction(() => window.phedraDesigner.buildability() !== null, null, { timeout: 20000 });
+    await page.waitForTimeout(150);  // the collisions at t follow
+    return api(() => window.phedraDesigner.buildability());
+  };
 
   // Rendered: the canvas holds more than the background.
   // (on a loaded 2-core machine the software renderer may take a while for the first frames)
@@ -37,6 +50,62 @@ try {
   }
   check(colours >= 10, `the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
+
+  // Buildability (issue 13): the status line, the red and orange panels, the
+  // buildable part of the slider, the causes, all as `phedra check` says.
+  const cliBuildability = (file) => JSON.parse(execFileSync(phedra, ['info', file, '--json'], { encoding: 'utf8' })).buildability;
+  {
+    const b = await settled();
+    const cli = cliBuildability(preset);
+    // (the interval's ends may differ from the command's in the last digit: the browser's libm)
+    const words = (text) => text.replace(/-?[0-9][0-9.e+-]*/g, '#');
+    check(b.buildable === cli.buildable && words(await status()) === words(cli.summary), `default: "${await status()}" vs CLI "${cli.summary}"`);
+    check((await status()).startsWith('buildable over the whole flexion interval'), `default preset: ${await status()}`);
+    const bar = await api(() => window.phedraDesigner.buildableBar());
+    check(bar && Math.abs(bar[0]) < 0.5 && Math.abs(bar[1] - 100) < 0.5, `the buildable bar of the default preset: ${bar}`);
+    check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'red panels on the default preset');
+  }
+  const loadFile = async (file) => {
+    const text = JSON.parse(readFileSync(file, 'utf8'));
+    const ok = await api((p) => window.phedraDesigner.apply(p), text.preset ?? text);
+    check(ok, `${file} refused: ${await status()}`);
+    return settled();
+  };
+  const data = path.join(path.dirname(preset), '..', 'tests', 'data');
+  {
+    // A random design with bow-ties: red panels (the CLI's), the causes and the fields to change.
+    const file = path.join(data, 'cases', 'open-mixed-tilted-axis.json');
+    const b = await loadFile(file);
+    const cli = cliBuildability(file);
+    const red = await api(() => window.phedraDesigner.invalidPanels());
+    check(JSON.stringify(red) === JSON.stringify(cli.invalid_panels), `red panels ${red} vs CLI ${cli.invalid_panels}`);
+    check(!b.buildable && (await status()).startsWith('not buildable'), `bow-ties: "${await status()}"`);
+    const why = await api(() => window.phedraDesigner.whyText());
+    check(why.includes('bow-tie') && why.includes('change: '), `the causes: "${why.slice(0, 200)}"`);
+    check((await api(() => window.phedraDesigner.buildableBar())) === null, 'a buildable bar for a design with bow-ties');
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-bow-ties.png') });
+  }
+  {
+    // Simple panels, but a hinge folds through below t = 0.2702: the bar covers the
+    // buildable part only; below it the two panels of that hinge turn orange.
+    const file = path.join(data, 'partly-buildable.json');
+    const b = await loadFile(file);
+    const cli = cliBuildability(file);
+    const bar = await api(() => window.phedraDesigner.buildableBar());
+    const expected = 100 * (cli.buildable_interval[0] - b.t_lambda) / (b.t_mu - b.t_lambda);
+    check(bar && Math.abs(bar[0] - expected) < 0.5 && bar[0] + bar[1] > 99.5, `partly buildable bar ${bar}, expected from ${expected}%`);
+    check((await status()).includes('only ('), `partly buildable: "${await status()}"`);
+    await api((t) => window.phedraDesigner.setT(t), b.t_lambda + 0.2 * (cli.buildable_interval[0] - b.t_lambda));
+    await page.waitForTimeout(400);
+    const orange = await api(() => window.phedraDesigner.collidingPanels());
+    check(orange.includes(28) && orange.includes(35), `orange panels below the buildable part: ${orange}`);
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-colliding.png') });
+    await api((t) => window.phedraDesigner.setT(t), 0.5 * (b.interval[0] + b.interval[1]));
+    await page.waitForTimeout(400);
+    check((await api(() => window.phedraDesigner.collidingPanels())).length === 0, 'orange panels inside the buildable part');
+  }
+  check(await api((p) => window.phedraDesigner.apply(p), JSON.parse(readFileSync(preset, 'utf8'))), 'the default preset again');
+  await settled();
 
   // Drag trajectory point 3 with the mouse: the preset and the mesh change, still valid.
   const info = await api(() => window.phedraDesigner.info());
@@ -55,7 +124,7 @@ try {
   const movedMesh = Math.hypot(...before.map((v, i) => v - after[i]));
   check(movedPoint > 1e-3, `dragging did not move trajectory[3] (${movedPoint})`);
   check(movedMesh > 1e-4, `dragging did not change the mesh (${movedMesh})`);
-  check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag: ${await api(() => window.phedraDesigner.message())}`);
+  check(await accepted(), `after the drag: ${await status()}`);
   // The drag may draw at a lower resolution (a slow renderer); once released, the full one is back.
   const resolution = await api(() => window.phedraDesigner.dragResolution());
   const fullWidth = await page.$eval('#view', (e) => Math.round(e.clientWidth * window.devicePixelRatio));
@@ -64,7 +133,7 @@ try {
 
   // Break an assumption through the preset JSON: a direction along the axis.
   const shown = await api(() => window.phedraDesigner.positions());
-  await page.click('summary');
+  await page.click('#json-summary');
   await page.$eval('#json', (area) => {
     const p = JSON.parse(area.value);
     p.directions[2] = [0, 0, 1];
@@ -94,7 +163,7 @@ try {
     area.dispatchEvent(new Event('input'));
   });
   await page.waitForTimeout(100);
-  check((await api(() => window.phedraDesigner.message())) === 'valid', 'the repaired preset is not valid');
+  check(await accepted(), `the repaired preset: ${await status()}`);
 
   // The slider: t and the mesh change.
   const t0 = await api(() => window.phedraDesigner.t());
@@ -163,7 +232,7 @@ try {
     check(Math.abs(uAfter - uBefore) > 1e-3, `dragging the height handle left grid.u_heights[2] at ${uAfter}`);
     const onAxis = await api(() => window.phedraDesigner.handlePosition('grid.u_heights', 2));
     check(Math.abs(onAxis[2] - uAfter) < 1e-5, `the height handle (single precision) is at ${onAxis}, the preset says ${uAfter}`);
-    check((await api(() => window.phedraDesigner.message())) === 'valid', `after dragging a height: ${await api(() => window.phedraDesigner.message())}`);
+    check(await accepted(), `after dragging a height: ${await status()}`);
   }
 
   // A row of face-coupled cells: the tube and 3 cells, then 2.
@@ -176,16 +245,16 @@ try {
 
   // Real time: edits of a 10^4-vertex model.
   const big = helixPreset(1112);
-  const accepted = await api((p) => window.phedraDesigner.apply(p), big);
-  check(accepted, `the 10^4-vertex preset was refused: ${await api(() => window.phedraDesigner.message())}`);
-  if (accepted) {
+  const bigAccepted = await api((p) => window.phedraDesigner.apply(p), big);
+  check(bigAccepted, `the 10^4-vertex preset was refused: ${await api(() => window.phedraDesigner.message())}`);
+  if (bigAccepted) {
     // Drag steps through the code a drag runs (bench/designer.mjs times them).
     const steps = await api(() => window.phedraDesigner.measure(3));
     check(steps.vertices >= 10000, `the big model has ${steps.vertices} vertices`);
     for (const figure of ['core', 'step', 'full', 'frame', 'load']) {
       check(steps[figure].median > 0 && Number.isFinite(steps[figure].worst), `drag step figure ${figure}: ${JSON.stringify(steps[figure])}`);
     }
-    check((await api(() => window.phedraDesigner.message())) === 'valid', `after the drag steps: ${await api(() => window.phedraDesigner.message())}`);
+    check(await accepted(), `after the drag steps: ${await status()}`);
     const handle = await api(() => window.phedraDesigner.handlePosition('trajectory', 1));
     const point = await api(() => window.phedraDesigner.preset().trajectory[1]);
     check(Math.hypot(...handle.map((v, i) => v - point[i])) < 1e-5, `trajectory handle 1 at ${handle}, the preset says ${point}`);

@@ -85,6 +85,7 @@ std::string describe(const Collision& collision, bool several_members, bool cont
 
 /// Every panel that penetrates another at t, or whose hinge has folded through
 /// on the way from t* to t (tracked over `steps` samples), sorted, each once.
+/// Contact (panels touching, a hinge folded flat) is not a collision.
 std::vector<std::size_t> colliding_panels(const Design& design, double t, std::size_t steps = 64,
                                           const SelfIntersectionOptions& options = {});
 
