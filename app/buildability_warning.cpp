@@ -7,10 +7,10 @@
 
 namespace phedra::cli {
 
-BuildabilityReport assess_for_output(const Design& design, std::size_t samples_per_side) {
+BuildabilityReport assess_for_output(const Design& design, std::optional<std::size_t> samples_per_side) {
   BuildabilityOptions options;
   options.diagnosis.hints = false;
-  options.sweep.samples_per_side = samples_per_side;
+  options.sweep.samples_per_side = samples_per_side.value_or(0);  // 0: by the panel count
   return assess_buildability(design, nullptr, options);
 }
 

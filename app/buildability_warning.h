@@ -7,12 +7,14 @@
 #include "commands.h"
 #include "phedra/buildability.h"
 
+#include <optional>
 #include <string>
 
 namespace phedra::cli {
 
-/// The buildability of a design for an output (panel causes without hints, the motion swept).
-BuildabilityReport assess_for_output(const Design& design, std::size_t samples_per_side = SelfIntersectionOptions{}.samples_per_side);
+/// The buildability of a design for an output (panel causes without hints, the
+/// motion swept at `samples_per_side`, by default sweep_samples_for the panel count).
+BuildabilityReport assess_for_output(const Design& design, std::optional<std::size_t> samples_per_side = std::nullopt);
 
 /// Warns on context.err when [lo, hi] is not buildable, naming the buildable part
 /// when there is one and `restrict_hint`, the option that writes it (for example

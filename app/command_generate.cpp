@@ -32,7 +32,7 @@ struct GenerateOptions {
   bool morph = false;
   bool cycle = false;
   bool no_self_intersection = false;
-  std::size_t intersection_samples = SelfIntersectionOptions{}.samples_per_side;
+  std::optional<std::size_t> intersection_samples;  ///< default: sweep_samples_for(panels)
 };
 
 /// --no-self-intersection: the intersection-free sub-interval around t*.
@@ -158,9 +158,9 @@ void add_generate_command(CLI::App& app, Context& context) {
                 "animation, --count and the frames span it, and a --t, --fraction or --at outside it is refused; "
                 "refused when the configuration at t* intersects itself");
   sub->add_option("--intersection-samples", o->intersection_samples,
-                  "With --no-self-intersection: samples from t* to each limit for the search")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
+                  "Samples from t* to each limit for the collision sweep (--no-self-intersection and the buildability "
+                  "warning); default 200, fewer above 2000 panels (at least 24)")
+      ->check(CLI::Range(1, 1000000));
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {

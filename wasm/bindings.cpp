@@ -6,6 +6,7 @@
 #include "phedra/assembly_check.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/buildability.h"
+#include "phedra/panel_nets.h"
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
@@ -204,7 +205,8 @@ class Designer {
 
   /// Whether the design can be built (docs/design.md): the panels' shapes with
   /// their causes, and with `sweep` the collision sweep of the motion
-  /// (`samples` a side) and field hints for the first `hinted` invalid panels.
+  /// (`samples` a side; 0: as the command, sweep_samples_for the panel count)
+  /// and field hints for the first `hinted` invalid panels.
   /// {ok, buildable, summary, panels, bow_tie, degenerate, shape_margin,
   /// self_crossing, swept, interval: [a, b] or null, t_lambda, t_mu,
   /// invalid: [{panel, shape, cause, why, hints: [text]}]}.
@@ -213,7 +215,7 @@ class Designer {
     try {
       BuildabilityOptions options;
       options.sweep_motion = sweep;
-      options.sweep.samples_per_side = static_cast<std::size_t>(std::max(1, samples));
+      options.sweep.samples_per_side = static_cast<std::size_t>(std::max(0, samples));  // 0: sweep_samples_for(panels)
       options.diagnosis.hints = hinted > 0;
       options.diagnosis.max_hinted_panels = static_cast<std::size_t>(std::max(0, hinted));
       const BuildabilityReport r = assess_buildability(*design_, &preset_object(document_), options);
@@ -261,13 +263,10 @@ class Designer {
   /// every drag step (one evaluation at t*). A view into the module's memory.
   val invalidPanels() {
     if (!design_) return failure("", "no design loaded");
-    const Assembly& a = design_->assembly;
-    a.evaluate(a.t_star(), configuration_);
-    const Points x = mesh_.positions(configuration_);
+    const std::vector<PanelShape> shapes = panel_shapes(design_->assembly, mesh_);
     invalid_.clear();
-    for (std::size_t f = 0; f < mesh_.faces.size(); ++f) {
-      const Quad& q = mesh_.faces[f];
-      if (!is_valid_panel(panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]}))) invalid_.push_back(static_cast<std::uint32_t>(f));
+    for (std::size_t f = 0; f < shapes.size(); ++f) {
+      if (!is_valid_panel(shapes[f])) invalid_.push_back(static_cast<std::uint32_t>(f));
     }
     return val(emscripten::typed_memory_view(invalid_.size(), invalid_.data()));
   }

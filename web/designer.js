@@ -540,7 +540,9 @@ function scheduleFigures() {
   showBuildability();
   showMessage();
   figuresTimer = setTimeout(() => {
-    buildability = designer.buildability(true, 100, 8);
+    // The sweep's samples a side: the command's (0: 200 up to 2000 panels), fewer on
+    // larger models (the summary says when it was coarser than 200).
+    buildability = designer.buildability(true, info.faces <= 2000 ? 0 : Math.max(8, Math.round(200000 / info.faces)), 8);
     if (buildability.ok === false) buildability = null;
     showBuildability();
     showMessage();
@@ -643,11 +645,15 @@ function settle() {
 }
 
 // --- controls --------------------------------------------------------------
+// Large models: the colliding panels follow when the slider is let go, not at
+// every pause of the hand (their search then takes longer than a frame).
+const largeModel = () => info.faces > 3000;
 $('slider').addEventListener('input', (e) => {
   fraction = Number(e.target.value) / 1000;
   updatePositions();
-  scheduleCollisions();
+  if (!largeModel()) scheduleCollisions();
 });
+$('slider').addEventListener('change', () => { if (largeModel()) scheduleCollisions(); });
 
 /// The mode a preset is in (the mode selector's value).
 const modeOf = (p) => (p.grid ? 'grid' : p.row ? 'row' : p.tube ? p.tube.type : 'open');
@@ -861,6 +867,7 @@ window.phedraDesigner = {
     fraction = Math.min(1, Math.max(0, (t - info.t_lambda) / (info.t_mu - info.t_lambda)));
     $('slider').value = String(Math.round(fraction * 1000));
     $('slider').dispatchEvent(new Event('input'));
+    $('slider').dispatchEvent(new Event('change'));
   },
   /// The bar of the buildable part: [left, width] in % of the slider, or null.
   buildableBar: () => ($('buildable-part').hidden ? null : [parseFloat($('buildable-part').style.left), parseFloat($('buildable-part').style.width)]),

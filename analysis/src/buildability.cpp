@@ -28,6 +28,11 @@ nlohmann::json hint_json(const FieldHint& h) {
 
 }  // namespace
 
+std::size_t sweep_samples_for(std::size_t panels) {
+  if (panels <= 2000) return 200;
+  return std::max<std::size_t>(24, 400000 / panels);
+}
+
 std::size_t BuildabilityReport::count(PanelShape shape) const {
   return static_cast<std::size_t>(
       std::count_if(invalid.begin(), invalid.end(), [shape](const PanelDiagnosis& d) { return d.shape == shape; }));
@@ -73,11 +78,12 @@ std::string BuildabilityReport::summary() const {
   }
   if (motion.at_t_star) return "not buildable: the configuration at t* intersects itself: " + describe(*motion.at_t_star, several);
   if (!swept) return "every panel is simple and t* is free of collisions (the motion was not swept)";
-  if (buildable()) return "buildable over the whole flexion interval " + interval_text(t_lambda, t_mu);
+  const std::string coarse = motion.samples < 200 ? " (swept at " + std::to_string(motion.samples) + " samples a side)" : "";
+  if (buildable()) return "buildable over the whole flexion interval " + interval_text(t_lambda, t_mu) + coarse;
   const double width = t_mu - t_lambda;
   const double share = width > 0.0 ? 100.0 * (motion.free_upper - motion.free_lower) / width : 0.0;
   return "buildable over " + interval_text(motion.free_lower, motion.free_upper) + " only (" + format_short(share) +
-         " % of the flexion interval " + interval_text(t_lambda, t_mu) + ")";
+         " % of the flexion interval " + interval_text(t_lambda, t_mu) + ")" + coarse;
 }
 
 nlohmann::json BuildabilityReport::to_json() const {
@@ -127,6 +133,7 @@ nlohmann::json BuildabilityReport::file_json() const {
                    {"invalid_panels", panels_list},
                    {"invalid_shapes", shapes},
                    {"self_crossing_by_kind", !self_crossing_members.empty()},
+                   {"samples_per_side", swept ? nlohmann::json(motion.samples) : nlohmann::json(nullptr)},
                    {"buildable_interval", range ? nlohmann::json{range->first, range->second} : nlohmann::json(nullptr)}};
   if (motion.at_t_star) j["collision_at_t_star"] = describe(*motion.at_t_star, members > 1);
   return j;
@@ -183,8 +190,10 @@ BuildabilityReport assess_buildability(const Design& design, const nlohmann::jso
     if (self_crossing_kind(a, m)) r.self_crossing_members.push_back(m);
   }
   r.swept = options.sweep_motion;
+  SelfIntersectionOptions sweep = options.sweep;
+  if (sweep.samples_per_side == 0) sweep.samples_per_side = sweep_samples_for(r.panels);
   if (options.sweep_motion) {
-    r.motion = find_self_intersections(design, options.sweep);
+    r.motion = find_self_intersections(design, sweep);
   } else {
     r.motion.name = r.name;
     r.motion.t_star = r.motion.free_lower = r.motion.free_upper = r.t_star;
@@ -193,7 +202,7 @@ BuildabilityReport assess_buildability(const Design& design, const nlohmann::jso
     r.motion.members = r.members;
     r.motion.panels = r.panels;
     r.motion.model_size = a.model_size();
-    r.motion.at_t_star = self_intersection_at_t_star(design, options.sweep);
+    r.motion.at_t_star = self_intersection_at_t_star(design, sweep);
   }
   return r;
 }

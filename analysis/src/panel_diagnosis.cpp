@@ -229,13 +229,10 @@ double shape_margin(const PanelNets& p) {
 std::vector<PanelDiagnosis> diagnose_panels(const Design& design, const AssemblyMesh& mesh, const nlohmann::json* preset,
                                             const DiagnosisOptions& options) {
   const Assembly& a = design.assembly;
-  AssemblyConfiguration c;
-  a.evaluate(a.t_star(), c);
-  const Points x = mesh.positions(c);
+  const std::vector<PanelShape> shapes = panel_shapes(a, mesh);
   std::vector<PanelDiagnosis> out;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Quad& q = mesh.faces[f];
-    const PanelShape shape = panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]});
+    const PanelShape shape = shapes[f];
     if (is_valid_panel(shape)) continue;
     const std::size_t m = mesh.face_member[f], local = mesh.face_local[f];
     const std::size_t columns = a.topology(m).face_columns();

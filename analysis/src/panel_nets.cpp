@@ -42,4 +42,14 @@ PanelNets panel_nets(const Assembly& assembly, std::size_t member, std::size_t l
   return p;
 }
 
+std::vector<PanelShape> panel_shapes(const Assembly& assembly, const AssemblyMesh& mesh) {
+  AssemblyConfiguration c;
+  assembly.evaluate(assembly.t_star(), c);
+  const Points x = mesh.positions(c);
+  std::vector<PanelShape> out;
+  out.reserve(mesh.faces.size());
+  for (const Quad& q : mesh.faces) out.push_back(panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]}));
+  return out;
+}
+
 }  // namespace phedra

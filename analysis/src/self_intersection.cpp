@@ -1,7 +1,9 @@
 #include "phedra/self_intersection.h"
 
+#include "phedra/box_tree.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
+#include "phedra/panel_nets.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +40,7 @@ class CollisionDetector {
       }
     }
     // Hinges: every pair of valid faces on one edge.
+    neighbours_.assign(valid_.size(), {});
     std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<std::size_t, int>>> edges;
     for (std::size_t k = 0; k < valid_.size(); ++k) {
       const Quad& q = mesh_.faces[valid_[k]];
@@ -54,21 +57,12 @@ class CollisionDetector {
           const int ca = faces[i].second, cb = faces[j].second;
           hinges_.push_back({faces[i].first, faces[j].first, edge.first, edge.second,
                              {qa[(ca + 2) % 4], qa[(ca + 3) % 4]}, {qb[(cb + 2) % 4], qb[(cb + 3) % 4]}});
-          adjacent_.push_back(key(faces[i].first, faces[j].first));
+          neighbours_[faces[i].first].push_back(faces[j].first);
+          neighbours_[faces[j].first].push_back(faces[i].first);
         }
       }
     }
-    std::sort(adjacent_.begin(), adjacent_.end());
-    // Broad-phase cell: the mean panel extent (panels are rigid: it never changes).
-    double sum = 0.0, largest = 0.0;
-    for (std::size_t f : valid_) {
-      const auto [lo, hi] = box(f, x);
-      const double extent = (hi - lo).maxCoeff();
-      sum += extent;
-      largest = std::max(largest, extent);
-    }
-    cell_ = valid_.empty() ? 1.0 : std::max(sum / static_cast<double>(valid_.size()), largest / 16.0);
-    if (!(cell_ > 0.0)) cell_ = 1.0;
+
   }
 
   const Assembly& assembly() const { return assembly_; }
@@ -127,11 +121,53 @@ class CollisionDetector {
     return first;
   }
 
+  /// Pairs of valid panels (indices into the valid faces, not adjacent) that
+  /// can meet between configurations a and b: their boxes over both, grown by
+  /// the largest vertex displacement between them (times 1.5: the paths bend),
+  /// overlap, and at a each reaches within that distance of the other's plane
+  /// on both sides. The bisection of a collision between two close samples
+  /// tests only these.
+  std::vector<std::pair<std::size_t, std::size_t>> close_pairs(const Points& a, const Points& b) const {
+    double moved = 0.0;
+    for (std::size_t v = 0; v < a.size(); ++v) moved = std::max(moved, (a[v] - b[v]).norm());
+    const double margin = 1.5 * moved + tolerance_;
+    std::vector<Box> boxes(valid_.size());
+    frames_.resize(valid_.size());
+    for (std::size_t k = 0; k < valid_.size(); ++k) {
+      const Box ba = box(valid_[k], a), bb = box(valid_[k], b);
+      boxes[k] = {ba.lo.cwiseMin(bb.lo), ba.hi.cwiseMax(bb.hi)};
+      boxes[k].lo.array() -= margin;
+      boxes[k].hi.array() += margin;
+      frames_[k] = frame(valid_[k], a);
+    }
+    std::vector<std::pair<std::size_t, std::size_t>> out;
+    BoxTree(boxes).for_each_pair([&](std::size_t f, std::size_t g) {
+      // Planes move with their panels: a distance changes by at most twice the displacement.
+      if (!adjacent(f, g) && straddle(distances(frames_[f], frames_[g])) > -2.0 * margin &&
+          straddle(distances(frames_[g], frames_[f])) > -2.0 * margin) {
+        out.push_back({f, g});
+      }
+      return true;
+    });
+    return out;
+  }
+
+  /// The first of `pairs` (close_pairs) whose panels penetrate at x.
+  std::optional<Collision> panels_among(const Points& x, double t,
+                                        const std::vector<std::pair<std::size_t, std::size_t>>& pairs) const {
+    frames_.resize(valid_.size());
+    for (std::size_t k = 0; k < valid_.size(); ++k) frames_[k] = frame(valid_[k], x);
+    for (const auto& [f, g] : pairs) {
+      if (depth(f, g) > tolerance_) return Collision{Collision::Kind::panels, id(valid_[f]), id(valid_[g]), t};
+    }
+    return std::nullopt;
+  }
+
   /// The deepest penetration of any two panels at x (0 when none).
   double deepest(const Points& x) const {
     double d = 0.0;
     for_each_penetration(x, [&](std::size_t f, std::size_t g) {
-      d = std::max(d, depth(valid_[f], valid_[g], x));
+      d = std::max(d, depth(f, g));
       return true;
     });
     return d;
@@ -166,79 +202,113 @@ class CollisionDetector {
   /// at x until it returns false.
   template <class Visit>
   void for_each_penetration(const Points& x, Visit&& visit) const {
-    struct Entry {
-      std::array<long long, 3> cell;
-      std::size_t face;
-    };
-    std::vector<std::pair<Vec3, Vec3>> boxes(valid_.size());
-    std::vector<Entry> entries;
-    entries.reserve(valid_.size() * 2);
+    std::vector<Box> boxes(valid_.size());
+    frames_.resize(valid_.size());
     for (std::size_t k = 0; k < valid_.size(); ++k) {
       boxes[k] = box(valid_[k], x);
-      boxes[k].first.array() -= tolerance_;
-      boxes[k].second.array() += tolerance_;
-      const auto lo = cell_of(boxes[k].first), hi = cell_of(boxes[k].second);
-      for (long long i = lo[0]; i <= hi[0]; ++i) {
-        for (long long j = lo[1]; j <= hi[1]; ++j) {
-          for (long long l = lo[2]; l <= hi[2]; ++l) entries.push_back({{i, j, l}, k});
-        }
-      }
+      boxes[k].lo.array() -= tolerance_;
+      boxes[k].hi.array() += tolerance_;
+      frames_[k] = frame(valid_[k], x);
     }
-    std::sort(entries.begin(), entries.end(), [](const Entry& p, const Entry& q) {
-      return p.cell != q.cell ? p.cell < q.cell : p.face < q.face;
+    const BoxTree tree(boxes);
+    tree.for_each_pair([&](std::size_t f, std::size_t g) {
+      if (adjacent(f, g)) return true;
+      return !(depth(f, g) > tolerance_) || visit(f, g);
     });
-    for (std::size_t begin = 0; begin < entries.size();) {
-      std::size_t end = begin;
-      while (end < entries.size() && entries[end].cell == entries[begin].cell) ++end;
-      for (std::size_t i = begin; i < end; ++i) {
-        for (std::size_t j = i + 1; j < end; ++j) {
-          const std::size_t f = entries[i].face, g = entries[j].face;
-          const auto& [flo, fhi] = boxes[f];
-          const auto& [glo, ghi] = boxes[g];
-          if ((flo.array() > ghi.array()).any() || (glo.array() > fhi.array()).any()) continue;
-          // Test each pair once: in the cell holding the low corner of the boxes' overlap.
-          if (cell_of(flo.cwiseMax(glo)) != entries[i].cell) continue;
-          if (std::binary_search(adjacent_.begin(), adjacent_.end(), key(f, g))) continue;
-          if (penetrate(valid_[f], valid_[g], x) && !visit(f, g)) return;
-        }
-      }
-      begin = end;
-    }
   }
 
-  static std::pair<std::size_t, std::size_t> key(std::size_t a, std::size_t b) { return {std::min(a, b), std::max(a, b)}; }
+  /// A panel at one configuration: its corners, plane and the two triangles it is cut into.
+  struct PanelFrame {
+    PanelCorners corners;
+    Vec3 normal = Vec3::Zero();  ///< unit
+    std::array<PreparedTriangle, 2> triangles;
+  };
+
+  PanelFrame frame(std::size_t face, const Points& x) const {
+    PanelFrame p;
+    p.corners = corners(face, x);
+    p.normal = quad_normal(p.corners);
+    const std::array<Triangle, 2> t = panel_triangles(p.corners);
+    p.triangles = {prepare(t[0]), prepare(t[1])};
+    return p;
+  }
+
+  /// Signed distances of b's corners from a's plane.
+  static std::array<double, 4> distances(const PanelFrame& a, const PanelFrame& b) {
+    std::array<double, 4> d{};
+    for (int k = 0; k < 4; ++k) d[k] = a.normal.dot(b.corners[k] - a.corners[0]);
+    return d;
+  }
+
+  /// How far a panel reaches to the less-reached side of a plane, from its corners'
+  /// distances (<= 0: one side only).
+  static double straddle(const std::array<double, 4>& d) {
+    const double above = std::max({d[0], d[1], d[2], d[3]}), below = -std::min({d[0], d[1], d[2], d[3]});
+    return std::min(above, below);
+  }
+
+  /// The span, along `line`, of where panel b's outline crosses the plane its
+  /// corner distances `d` are measured from (a superset of b's section there).
+  static std::pair<double, double> span(const PanelFrame& b, const std::array<double, 4>& d, const Vec3& line) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int k = 0; k < 4; ++k) {
+      const int l = (k + 1) % 4;
+      if ((d[k] <= 0.0) == (d[l] <= 0.0) && d[k] != 0.0) continue;
+      const double u = d[k] == d[l] ? 0.0 : d[k] / (d[k] - d[l]);
+      const double x = line.dot(b.corners[k] + u * (b.corners[l] - b.corners[k]));
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    return {lo, hi};
+  }
+
+  /// How deeply valid panels f and g (indices into the valid faces, frames_ of
+  /// the current configuration) cut into each other: triangle_penetration of
+  /// their triangles, after the cheap tests that each crosses the other's plane
+  /// and that their sections on the planes' common line overlap.
+  double depth(std::size_t f, std::size_t g) const {
+    const PanelFrame& a = frames_[f];
+    const PanelFrame& b = frames_[g];
+    const std::array<double, 4> db = distances(a, b);
+    const double b_straddles = straddle(db);
+    if (!(b_straddles > tolerance_)) return std::min(b_straddles, 0.0);
+    const std::array<double, 4> da = distances(b, a);
+    const double planes = std::min(b_straddles, straddle(da));
+    if (!(planes > tolerance_)) return std::min(planes, 0.0);
+    const Vec3 line = a.normal.cross(b.normal);
+    const double sine = line.norm();
+    if (sine > 1e-6) {  // (nearly parallel planes: leave it to the triangles)
+      const auto [a0, a1] = span(a, da, line);
+      const auto [b0, b1] = span(b, db, line);
+      const double common = (std::min(a1, b1) - std::max(a0, b0)) / sine;
+      if (!(common > tolerance_)) return std::min(common, 0.0);
+    }
+    double deepest = -std::numeric_limits<double>::infinity();
+    for (const PreparedTriangle& p : a.triangles) {
+      for (const PreparedTriangle& q : b.triangles) deepest = std::max(deepest, triangle_penetration(p, q));
+    }
+    return deepest;
+  }
+
+  /// Two valid panels share an edge (a hinge: it folds, it cannot cut).
+  bool adjacent(std::size_t f, std::size_t g) const {
+    const std::vector<std::size_t>& n = neighbours_[f];
+    return std::find(n.begin(), n.end(), g) != n.end();
+  }
 
   PanelCorners corners(std::size_t f, const Points& x) const {
     const Quad& q = mesh_.faces[f];
     return {x[q[0]], x[q[1]], x[q[2]], x[q[3]]};
   }
 
-  std::pair<Vec3, Vec3> box(std::size_t f, const Points& x) const {
+  Box box(std::size_t f, const Points& x) const {
     const Quad& q = mesh_.faces[f];
-    Vec3 lo = x[q[0]], hi = x[q[0]];
+    Box b{x[q[0]], x[q[0]]};
     for (int c = 1; c < 4; ++c) {
-      lo = lo.cwiseMin(x[q[c]]);
-      hi = hi.cwiseMax(x[q[c]]);
+      b.lo = b.lo.cwiseMin(x[q[c]]);
+      b.hi = b.hi.cwiseMax(x[q[c]]);
     }
-    return {lo, hi};
-  }
-
-  std::array<long long, 3> cell_of(const Vec3& p) const {
-    return {static_cast<long long>(std::floor(p.x() / cell_)), static_cast<long long>(std::floor(p.y() / cell_)),
-            static_cast<long long>(std::floor(p.z() / cell_))};
-  }
-
-  bool penetrate(std::size_t f, std::size_t g, const Points& x) const { return depth(f, g, x) > tolerance_; }
-
-  /// How deeply two panels cut into each other (triangle_penetration of their triangles).
-  double depth(std::size_t f, std::size_t g, const Points& x) const {
-    const auto tf = panel_triangles(corners(f, x));
-    const auto tg = panel_triangles(corners(g, x));
-    double deepest = -std::numeric_limits<double>::infinity();
-    for (const Triangle& p : tf) {
-      for (const Triangle& q : tg) deepest = std::max(deepest, triangle_penetration(p, q));
-    }
-    return deepest;
+    return b;
   }
 
   PanelId id(std::size_t f) const { return panel_id(assembly_, mesh_, f); }
@@ -247,12 +317,12 @@ class CollisionDetector {
   const Assembly& assembly_;
   AssemblyMesh mesh_;
   double tolerance_ = 0.0;
-  double cell_ = 1.0;
   std::vector<std::size_t> valid_;
   std::vector<InvalidPanel> invalid_;
   std::vector<Hinge> hinges_;
-  std::vector<std::pair<std::size_t, std::size_t>> adjacent_;
+  std::vector<std::vector<std::size_t>> neighbours_;  ///< per valid panel: the valid panels it shares an edge with
   mutable AssemblyConfiguration configuration_;
+  mutable std::vector<PanelFrame> frames_;  ///< of the valid panels, at the configuration being tested
 };
 
 /// Walks from t* towards `end`; returns the first collision (t = the last free t).
@@ -265,27 +335,34 @@ std::optional<Collision> sweep(const CollisionDetector& detector, double end, st
   const double width = detector.assembly().flexion_interval().width();
   free_end = t_star;
   if (end == t_star) return std::nullopt;
+  auto sample_t = [&](std::size_t k) {
+    const double s = 1.0 - static_cast<double>(k) / static_cast<double>(samples);
+    return k >= samples ? end : t_star + (end - t_star) * (1.0 - s * s);
+  };
   std::vector<double> good_openings = openings_at_t_star, next;
   double good = t_star;
+  Points x_good = detector.positions(t_star);
   for (std::size_t k = 1; k <= samples; ++k) {
-    const double s = 1.0 - static_cast<double>(k) / static_cast<double>(samples);
-    const double t = k == samples ? end : t_star + (end - t_star) * (1.0 - s * s);
+    const double t = sample_t(k);
     const Points x = detector.positions(t);
     std::optional<Collision> hit = detector.continue_hinges(x, good_openings, next, t);
     if (!hit) hit = detector.panels(x, t);
     if (!hit) {
       good = t;
       good_openings = next;
+      x_good = x;
       free_end = t;
       continue;
     }
-    // Bisect [good, bad] down to 1e-12 of the interval's width.
+    // Bisect [good, bad] down to 1e-12 of the interval's width, testing only
+    // the panels that come close between the two.
     double bad = t;
+    const auto pairs = detector.close_pairs(x_good, x);
     for (int iteration = 0; iteration < 80 && std::abs(bad - good) > 1e-12 * width; ++iteration) {
       const double mid = 0.5 * (good + bad);
       const Points xm = detector.positions(mid);
       std::optional<Collision> h = detector.continue_hinges(xm, good_openings, next, mid);
-      if (!h) h = detector.panels(xm, mid);
+      if (!h) h = detector.panels_among(xm, mid, pairs);
       if (h) {
         bad = mid;
         hit = h;
@@ -346,14 +423,10 @@ std::string describe(const PanelId& p, bool several_members) {
 std::vector<InvalidPanel> invalid_panels(const Design& design) {
   const Assembly& a = design.assembly;
   const AssemblyMesh mesh = panel_mesh(design);
-  AssemblyConfiguration c;
-  a.evaluate(a.t_star(), c);
-  const Points x = mesh.positions(c);
+  const std::vector<PanelShape> shapes = panel_shapes(a, mesh);
   std::vector<InvalidPanel> out;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-    const Quad& q = mesh.faces[f];
-    const PanelShape shape = panel_shape({x[q[0]], x[q[1]], x[q[2]], x[q[3]]});
-    if (!is_valid_panel(shape)) out.push_back({panel_id(a, mesh, f), shape});
+    if (!is_valid_panel(shapes[f])) out.push_back({panel_id(a, mesh, f), shapes[f]});
   }
   return out;
 }

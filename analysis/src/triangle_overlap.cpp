@@ -1,6 +1,7 @@
 #include "phedra/triangle_overlap.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace phedra {
@@ -35,17 +36,31 @@ std::pair<double, double> section(const Triangle& q, const std::array<double, 3>
 
 }  // namespace
 
-double triangle_penetration(const Triangle& p, const Triangle& q) {
-  const Vec3 np_raw = (p[1] - p[0]).cross(p[2] - p[0]), nq_raw = (q[1] - q[0]).cross(q[2] - q[0]);
-  double scale = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    scale = std::max({scale, (p[(k + 1) % 3] - p[k]).squaredNorm(), (q[(k + 1) % 3] - q[k]).squaredNorm()});
-  }
+PreparedTriangle prepare(const Triangle& t) {
+  PreparedTriangle p;
+  p.corners = t;
+  const Vec3 raw = (t[1] - t[0]).cross(t[2] - t[0]);
+  p.area2 = raw.squaredNorm();
+  p.normal = p.area2 > 0.0 ? Vec3(raw / std::sqrt(p.area2)) : Vec3::Zero();
+  for (int k = 0; k < 3; ++k) p.edge2 = std::max(p.edge2, (t[(k + 1) % 3] - t[k]).squaredNorm());
+  return p;
+}
+
+double triangle_penetration(const Triangle& p, const Triangle& q) { return triangle_penetration(prepare(p), prepare(q)); }
+
+double triangle_penetration(const PreparedTriangle& pt, const PreparedTriangle& qt) {
+  const double scale = std::max(pt.edge2, qt.edge2);
   const double tiny = 1e-24 * scale * scale;
-  if (!(np_raw.squaredNorm() > tiny) || !(nq_raw.squaredNorm() > tiny)) return 0.0;  // no area
-  const Vec3 np = np_raw.normalized(), nq = nq_raw.normalized();
-  const std::array<double, 3> dq = distances(q, np, p[0]), dp = distances(p, nq, q[0]);
-  const double depth = std::min(straddle(dq), straddle(dp));
+  if (!(pt.area2 > tiny) || !(qt.area2 > tiny)) return 0.0;  // no area
+  const Triangle& p = pt.corners;
+  const Triangle& q = qt.corners;
+  const Vec3& np = pt.normal;
+  const Vec3& nq = qt.normal;
+  const std::array<double, 3> dq = distances(q, np, p[0]);
+  const double above_q = straddle(dq);
+  if (above_q <= 0.0) return above_q;
+  const std::array<double, 3> dp = distances(p, nq, q[0]);
+  const double depth = std::min(above_q, straddle(dp));
   if (depth <= 0.0) return depth;
   const Vec3 line = np.cross(nq);
   if (!(line.squaredNorm() > 1e-24)) return 0.0;  // coplanar: contact

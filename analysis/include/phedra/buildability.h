@@ -22,7 +22,12 @@
 
 namespace phedra {
 
+/// The samples a side for a sweep that should cost about what 2000 panels at 200
+/// samples cost: 200 up to 2000 panels, fewer above (at least 24).
+std::size_t sweep_samples_for(std::size_t panels);
+
 struct BuildabilityOptions {
+  /// samples_per_side 0: sweep_samples_for(the design's panel count).
   SelfIntersectionOptions sweep;
   DiagnosisOptions diagnosis;
   /// Sweep the motion for collisions (false: panel shapes and t* alone).

@@ -6,9 +6,11 @@
 // at the corner.
 
 #include "phedra/assembly.h"
+#include "phedra/assembly_mesh.h"
 #include "phedra/panel_shape.h"
 
 #include <array>
+#include <vector>
 
 namespace phedra {
 
@@ -27,6 +29,9 @@ struct PanelNets {
 
 /// Face `local` (row * face_columns + column) of member m.
 PanelNets panel_nets(const Assembly& assembly, std::size_t member, std::size_t local);
+
+/// The shape of every panel of `mesh` (a mesh of `assembly`), at t*: the motion keeps it.
+std::vector<PanelShape> panel_shapes(const Assembly& assembly, const AssemblyMesh& mesh);
 
 /// Signed scale of an edge of G against the same edge of A: <g, a> / |a|^2.
 inline double edge_scale(const Vec3& general, const Vec3& axial) {

@@ -19,6 +19,19 @@ using Triangle = std::array<Vec3, 3>;
 /// triangle without area), < 0 apart.
 double triangle_penetration(const Triangle& p, const Triangle& q);
 
+/// A triangle with what every test of it needs, computed once (a panel's
+/// triangles are tested against many others in a configuration).
+struct PreparedTriangle {
+  Triangle corners;
+  Vec3 normal = Vec3::Zero();  ///< unit (zero without area)
+  double area2 = 0.0;          ///< |cross product|^2
+  double edge2 = 0.0;          ///< longest edge, squared
+};
+PreparedTriangle prepare(const Triangle& t);
+
+/// triangle_penetration(p.corners, q.corners), from the prepared data.
+double triangle_penetration(const PreparedTriangle& p, const PreparedTriangle& q);
+
 /// triangle_penetration(p, q) > tolerance.
 inline bool triangles_penetrate(const Triangle& p, const Triangle& q, double tolerance) {
   return triangle_penetration(p, q) > tolerance;
