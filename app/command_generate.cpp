@@ -195,7 +195,8 @@ void add_generate_command(CLI::App& app, Context& context) {
       if (!f.contains(t)) throw OutOfIntervalError(t, f.lower.t, f.upper.t);
       check_in_range(t, range);
       warn(t, t);
-      emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply"), o->output, o->preset, context.out);
+      emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply", "phedra buildability: " + buildability.summary()),
+           o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\" at t = "
                   << format_number(t) << '\n';
       return;

@@ -178,6 +178,12 @@ TEST_CASE("every command and every export names the same invalid panels", "[buil
   const json motion = read_json(dir / "b.json");
   CHECK(motion["buildability"]["invalid_panels"].get<std::vector<std::size_t>>() == invalid);
   CHECK(motion["buildability"]["buildable"] == false);
+  // OBJ and PLY say it in a comment.
+  REQUIRE(phedra_cli({"generate", bow_ties, "-o", dir / "b.obj"}).code == 0);
+  std::ifstream obj(dir / "b.obj");
+  std::string first;
+  std::getline(obj, first);
+  CHECK_THAT(first, Contains("# phedra buildability: not buildable: 17 of 42 panels"));
   // outlines: the same panels outlined in red and labelled with their shape; a warning names them.
   const Run o = phedra_cli({"outlines", bow_ties, "-o", dir / "b.svg"});
   CHECK(o.code == 0);

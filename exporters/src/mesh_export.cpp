@@ -19,7 +19,7 @@ struct DoublePrecision : OpenMesh::DefaultTraits {
 
 }  // namespace
 
-std::string mesh_text(const Design& design, double t, const std::string& extension) {
+std::string mesh_text(const Design& design, double t, const std::string& extension, const std::string& comment) {
   using Mesh = OpenMesh::PolyMesh_ArrayKernelT<DoublePrecision>;
   // OpenMesh reports on std::cerr; phedra's own messages say what happened.
   omlog().disable();
@@ -48,7 +48,16 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
   if (!OpenMesh::IO::write_mesh(out, stream, extension, options, 9)) {  // float round trip
     throw Error(ExitCode::internal, "OpenMesh could not write " + extension);
   }
-  return stream.str();
+  std::string text = stream.str();
+  if (comment.empty()) return text;
+  std::string line = comment;
+  for (char& c : line) c = c == '\n' || c == '\r' ? ' ' : c;
+  if (extension == ".obj") return "# " + line + "\n" + text;
+  // PLY: comments follow the format line of the header.
+  const std::size_t format = text.find("\nformat ");
+  const std::size_t end = format == std::string::npos ? std::string::npos : text.find('\n', format + 1);
+  if (end == std::string::npos) return text;
+  return text.substr(0, end + 1) + "comment " + line + "\n" + text.substr(end + 1);
 }
 
 }  // namespace phedra

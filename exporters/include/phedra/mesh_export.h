@@ -1,6 +1,6 @@
 #pragma once
-// Static meshes of a design at one t through OpenMesh: OBJ and PLY (quads,
-// shared vertices welded for merged designs).
+// Static meshes of a design at one t through OpenMesh: OBJ and PLY (the
+// distinct panels, face k = panel k; shared vertices welded).
 
 #include "phedra/design.h"
 
@@ -8,8 +8,10 @@
 
 namespace phedra {
 
-/// The mesh at t as text in the format of `extension` (".obj" or ".ply").
-/// Throws Error(internal) rather than write a non-finite number.
-std::string mesh_text(const Design& design, double t, const std::string& extension);
+/// The mesh at t as text in the format of `extension` (".obj" or ".ply");
+/// `comment` (one line, may be empty) goes into the file as a comment (the
+/// design's buildability). Throws Error(internal) rather than write a
+/// non-finite number.
+std::string mesh_text(const Design& design, double t, const std::string& extension, const std::string& comment = "");
 
 }  // namespace phedra
