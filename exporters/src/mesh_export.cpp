@@ -24,6 +24,7 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
   // OpenMesh reports on std::cerr; phedra's own messages say what happened.
   omlog().disable();
   omout().disable();
+  omerr().disable();  // a shared wall's refused add_face is expected: it is added again below
   const Assembly& a = design.assembly;
   const AssemblyMesh mesh = panel_mesh(design);
   const Points positions = mesh.positions(a.evaluate(t));
@@ -40,7 +41,10 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
     // A wall two cells share makes its hinges non-manifold (three panels on an
     // edge): the panel gets its own copies of its corners, at the same places,
     // so that panel k stays face k of the file.
-    for (Mesh::VertexHandle& h : face) h = out.add_vertex(out.point(h));
+    for (Mesh::VertexHandle& h : face) {
+      const Mesh::Point corner = out.point(h);  // (add_vertex may move the points)
+      h = out.add_vertex(corner);
+    }
     if (!out.add_face(face).is_valid()) throw Error(ExitCode::internal, "OpenMesh refused a panel");
   }
   std::ostringstream stream;
