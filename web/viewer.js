@@ -40,6 +40,12 @@ new GLTFLoader().load('/model.glb', (gltf) => {
       `isometry ${format(c.isometry)}, closure ${format(c.closure)}, shared ${format(c.shared_vertices)}` +
       (info.max_hinge_opening !== undefined ? `; hinge opening between keyframes ${format(info.max_hinge_opening / info.model_size)}` : '');
   }
+  // What the command said of the design when it wrote the file (docs/design.md, Buildable designs).
+  if (info.buildability) {
+    const b = info.buildability;
+    $('buildability').textContent = b.summary;
+    $('buildability').style.color = b.buildable ? '#a5d6a7' : '#ffcc80';
+  }
   const box = new THREE.Box3().setFromObject(gltf.scene);
   const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
   camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 0.9).multiplyScalar(size));

@@ -1,6 +1,7 @@
 // Opens the viewer page in headless Chromium (Debian's /usr/bin/chromium, driven
 // by playwright-core): the model renders (the canvas is not blank), no console
-// errors, and moving the slider changes the pose and the shown t.
+// errors, moving the slider changes the pose and the shown t, and the page says
+// whether the design can be built (the file's extras).
 // usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png
 import { canvasColours, launch, serve } from './browser.mjs';
 
@@ -30,6 +31,9 @@ try {
   const moved = Math.hypot(...before[0].map((x, i) => x - after[0][i]));
   if (!(moved > 1e-6)) failures.push('the slider did not change the pose');
   if (before[1] === after[1]) failures.push('the slider did not change the shown t');
+  // The buildability the command stored in the file.
+  const buildability = await page.$eval('#buildability', (e) => e.textContent);
+  if (!buildability.startsWith('buildable over the whole flexion interval')) failures.push(`buildability line: "${buildability}"`);
   if (errors.length) failures.push(`console errors: ${errors.join(' | ')}`);
   console.log(`viewer: ${colours} colours, corner moved ${moved.toExponential(3)}, t ${before[1]} -> ${after[1]}`);
 } finally {
