@@ -431,6 +431,50 @@ std::vector<InvalidPanel> invalid_panels(const Design& design) {
   return out;
 }
 
+MotionMargins motion_margins(const Design& design, double from, double to, std::size_t samples_per_side,
+                             const SelfIntersectionOptions& options) {
+  const CollisionDetector detector(design, options);
+  const Assembly& a = design.assembly;
+  const double t_star = a.t_star();
+  const FlexionInterval& f = a.flexion_interval();
+  MotionMargins m;
+  m.t_depth = m.t_folded = t_star;
+  m.folded = -std::numeric_limits<double>::infinity();
+  auto look = [&](const Points& x, const std::vector<double>& openings, double t) {
+    const double depth = detector.deepest(x);
+    if (depth > m.depth) {
+      m.depth = depth;
+      m.t_depth = t;
+    }
+    for (double o : openings) {
+      const double past = std::max(-o, o - two_pi);  // how far past shut (0 or 360 degrees)
+      if (past > m.folded) {
+        m.folded = past;
+        m.t_folded = t;
+      }
+    }
+  };
+  const Points x0 = detector.positions(t_star);
+  const std::vector<double> start = detector.openings(x0);
+  look(x0, start, t_star);
+  for (const double end : {to, from}) {
+    if (end == t_star) continue;
+    const bool limit = end == f.lower.t || end == f.upper.t;
+    std::vector<double> openings = start, next;
+    const std::size_t n = std::max<std::size_t>(samples_per_side, 1);
+    for (std::size_t k = 1; k <= n; ++k) {
+      const double s = 1.0 - static_cast<double>(k) / static_cast<double>(limit ? n + 1 : n);
+      const double t = k == n && !limit ? end : t_star + (end - t_star) * (1.0 - s * s);
+      const Points x = detector.positions(t);
+      detector.continue_hinges(x, openings, next, t);
+      openings.swap(next);
+      look(x, openings, t);
+    }
+  }
+  if (!std::isfinite(m.folded)) m.folded = -std::numbers::pi;  // no hinges
+  return m;
+}
+
 std::vector<std::size_t> colliding_panels(const Design& design, double t, std::size_t steps,
                                           const SelfIntersectionOptions& options) {
   const CollisionDetector detector(design, options);

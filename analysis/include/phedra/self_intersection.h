@@ -83,6 +83,19 @@ std::optional<Collision> self_intersection_at_t_star(const Design& design, const
 /// members when there are several; `contact`: a touch at a flexion limit ("touch (no more)").
 std::string describe(const Collision& collision, bool several_members, bool contact = false);
 
+/// How badly a motion collides, as numbers a search can drive to zero.
+struct MotionMargins {
+  double depth = 0.0;   ///< the deepest penetration of two simple panels at any sample (> 0: they cut; a length)
+  double folded = 0.0;  ///< the furthest any hinge went past shut (radians; > 0 folded through, <= 0 fine)
+  double t_depth = 0.0, t_folded = 0.0;  ///< where
+};
+
+/// The motion over [from, to] (a part of the flexion interval containing t*):
+/// t* and `samples_per_side` samples towards each end, crowding towards it; an
+/// end that is a flexion limit is left out (contact is allowed there).
+MotionMargins motion_margins(const Design& design, double from, double to, std::size_t samples_per_side,
+                             const SelfIntersectionOptions& options = {});
+
 /// Every panel that penetrates another at t, or whose hinge has folded through
 /// on the way from t* to t (tracked over `steps` samples), sorted, each once.
 /// Contact (panels touching, a hinge folded flat) is not a collision.

@@ -1,0 +1,123 @@
+// phedra repair PRESET -o OUT.json [--vary GROUPS] [--require F] [--no-fallback] [--restarts N] [--max-seconds S] [--json]
+
+#include "commands.h"
+#include "phedra/errors.h"
+#include "phedra/number_format.h"
+#include "phedra/repair.h"
+#include "support.h"
+
+#include <filesystem>
+#include <memory>
+#include <ostream>
+
+namespace phedra::cli {
+namespace {
+
+struct RepairCommandOptions {
+  std::string preset;
+  std::string output;
+  std::string vary = "apex_heights,directions";
+  RepairOptions repair;
+  bool no_fallback = false;
+  bool json = false;
+};
+
+std::string percent(double fraction) { return format_short(100.0 * fraction) + " %"; }
+
+nlohmann::json result_json(const RepairResult& r) {
+  nlohmann::json changes = nlohmann::json::array();
+  for (const FieldChange& c : r.changes) {
+    changes.push_back({{"field", c.field}, {"before", c.before}, {"after", c.after}, {"change", c.change}, {"relative", c.relative}});
+  }
+  return {{"found", r.found},
+          {"already_buildable", r.already_buildable},
+          {"fraction", r.fraction},
+          {"distance", r.distance},
+          {"changes", changes},
+          {"before", r.before.file_json()},
+          {"after", r.after.file_json()},
+          {"evaluations", r.evaluations},
+          {"starts", r.starts},
+          {"seconds", r.seconds},
+          {"notes", r.notes},
+          {"closest", r.closest.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.closest)}};
+}
+
+}  // namespace
+
+void add_repair_command(CLI::App& app, Context& context) {
+  auto o = std::make_shared<RepairCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "repair", "The nearest buildable design: change the preset's apex heights and directions (by default) as "
+                "little as possible, relative to the model size, until every panel is simple and the motion is free "
+                "of collisions over the whole flexion interval (or the widest part around t* that can be reached); "
+                "writes the repaired preset and prints what changed; exit 1 when nothing buildable was found");
+  add_preset_argument(sub, o->preset);
+  sub->add_option("-o,--output", o->output, "The repaired preset (.json); not written when nothing was found")->required();
+  sub->add_option("--vary", o->vary, "What may change: a comma-separated list of apex_heights, directions, trajectory")
+      ->capture_default_str();
+  sub->add_option("--require", o->repair.required_fraction,
+                  "The part of the flexion interval that must be buildable: from t* this fraction of the way to each "
+                  "limit (1: all of it, 0: t* alone)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  sub->add_flag("--no-fallback", o->no_fallback,
+                "Fail (exit 1) rather than settle for a smaller buildable part than --require asks");
+  sub->add_option("--restarts", o->repair.restarts, "Perturbed starts after the input when the nearest search fails")
+      ->check(CLI::Range(0, 100))
+      ->capture_default_str();
+  sub->add_option("--max-seconds", o->repair.max_seconds, "Time for the search")->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_flag("--json", o->json, "Print JSON instead of text");
+  sub->callback([o, &context] {
+    if (std::filesystem::path(o->output).extension() != ".json") {
+      throw InvalidInputError("output", "the repaired preset is written as .json");
+    }
+    o->repair.vary = parse_variable_groups(o->vary);
+    o->repair.widest_fallback = !o->no_fallback;
+    const LoadedDesign loaded = load_with_preset(context, o->preset);
+    const RepairResult r = repair(loaded.preset, o->repair);
+    if (r.found && !r.already_buildable) {
+      nlohmann::json out = r.preset;
+      const std::string name = loaded.preset.value("name", std::string("unnamed"));
+      out["name"] = name + "-repaired";
+      out["description"] = "Repaired by phedra repair from \"" + name + "\" (varied: " + o->vary +
+                           "): " + r.after.summary() + ".";
+      emit(out.dump(2) + "\n", o->output, o->preset, context.out);
+    }
+    if (o->json) {
+      context.out << result_json(r).dump(2) << '\n';
+    } else {
+      std::ostream& out = context.out;
+      out << "before: " << r.before.summary() << '\n';
+      if (r.already_buildable) {
+        out << "already buildable as required: nothing to repair, nothing written\n";
+      } else if (r.found) {
+        out << "after:  " << r.after.summary() << '\n';
+        if (r.fraction < o->repair.required_fraction) {
+          out << "        the required part (" << percent(o->repair.required_fraction)
+              << " of the way from t* to each limit) could not be reached; this is the widest found\n";
+        }
+        out << "changed " << r.changes.size() << " field" << (r.changes.size() == 1 ? "" : "s") << ", distance "
+            << format_short(r.distance) << " (relative to the model size, docs/design.md):\n";
+        for (const FieldChange& c : r.changes) {
+          out << "  " << c.field << ": " << c.before.dump() << " -> " << c.after.dump();
+          if (c.field.rfind("directions", 0) == 0) {
+            out << " (turned " << format_short(c.change) << " degrees)\n";
+          } else {
+            out << " (" << (c.change >= 0 ? "+" : "") << format_short(c.change) << ", " << format_short(c.relative)
+                << " of the model size)\n";
+          }
+        }
+        out << "wrote " << o->output << '\n';
+      } else {
+        out << "no buildable design found: " << r.closest << "; nothing written\n";
+      }
+      for (const std::string& note : r.notes) out << "note: " << note << '\n';
+      out << "search: " << r.evaluations << " designs built, " << r.starts << " local searches, "
+          << format_short(r.seconds) << " s\n";
+    }
+    context.exit_code = r.found ? 0 : static_cast<int>(ExitCode::check_failed);
+  });
+}
+
+}  // namespace phedra::cli

@@ -1,0 +1,75 @@
+#pragma once
+// The numbers of a preset a repair may change, as one vector: apex heights of
+// every kind (keeping each kind's closure condition: a core-schema tube's
+// repeated heights, an anti-parallelogram tube's symmetry), the turn of each
+// profile direction about the axis (directions stay orthogonal to it), and the
+// trajectory's coordinates. Lengths count relative to the model size, turns in
+// radians: the distance of a repair (docs/design.md, Repair).
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+enum class VariableGroup { apex_heights, directions, trajectory };
+
+std::string to_string(VariableGroup group);
+
+/// "apex_heights,directions" -> the groups; InvalidInputError("--vary", ...) for an unknown name or none.
+std::vector<VariableGroup> parse_variable_groups(const std::string& list);
+
+struct DesignVariable {
+  enum class Kind { length, turn };
+  std::string field;  ///< the preset field: "apex_heights[3]", "trajectory[4][1]", "directions[2]" (a turn)
+  Kind kind = Kind::length;
+  double start = 0.0;  ///< its value in the input (a turn starts at 0)
+  double scale = 1.0;  ///< the model size for lengths, 1 for turns (radians)
+};
+
+class DesignVariables {
+ public:
+  /// The variables of `preset` (a preset object) in `groups`. InvalidInputError
+  /// ("--vary") when the groups give nothing to change.
+  DesignVariables(const nlohmann::json& preset, const std::vector<VariableGroup>& groups, double model_size);
+
+  const std::vector<DesignVariable>& variables() const { return variables_; }
+  std::size_t size() const { return variables_.size(); }
+  std::vector<double> start() const;
+
+  /// The preset with the variables at x (and every tied value following them).
+  nlohmann::json preset_at(const std::vector<double>& x) const;
+
+  /// sqrt(sum ((x_k - start_k) / scale_k)^2): how far x is from the input.
+  double distance(const std::vector<double>& x) const;
+
+  /// What the groups asked for but cannot be changed, and why (for reports).
+  const std::vector<std::string>& notes() const { return notes_; }
+
+ private:
+  struct Length {
+    nlohmann::json::json_pointer pointer;
+  };
+  struct Turn {
+    nlohmann::json::json_pointer pointer;  ///< the direction vector
+    std::vector<double> direction;         ///< as given
+  };
+  /// value(target) = sum of coefficient * variable: a tied entry.
+  struct Tie {
+    nlohmann::json::json_pointer target;
+    std::vector<std::pair<std::size_t, double>> terms;
+  };
+  void add_length(const nlohmann::json::json_pointer& pointer, const std::string& field, double model_size);
+
+  nlohmann::json preset_;
+  std::vector<double> axis_{0.0, 0.0, 1.0};
+  std::vector<DesignVariable> variables_;
+  std::vector<Length> lengths_;  ///< for the length variables, in order
+  std::vector<Turn> turns_;      ///< for the turn variables, in order
+  std::vector<std::size_t> slot_;  ///< variable k -> index into lengths_ or turns_
+  std::vector<Tie> ties_;
+  std::vector<std::string> notes_;
+};
+
+}  // namespace phedra

@@ -1,0 +1,76 @@
+#pragma once
+// The nearest buildable design (issue 14): varies the chosen numbers of a preset
+// (design_variables.h) as little as possible, relative to the model size, so
+// that every panel is simple and the motion is free of collisions over the
+// required part of the flexion interval. NLopt's COBYLA minimises the squared
+// distance under smooth-enough margins (docs/design.md, Repair):
+//  - every panel's shape margin (shape_margin: the corner turns and edge scales
+//    of MATH.md section 9) at least `shape_target`;
+//  - over the required part of the motion (t* and `motion_samples` samples a
+//    side), no penetration (the deepest one, a length) and no hinge past shut;
+// first the shapes alone, then everything, from the input and from `restarts`
+// perturbed starts (the buildable set need not be connected). Every candidate
+// is verified by the buildability report itself (200 samples a side), never by
+// the optimizer's own figures.
+
+#include "phedra/buildability.h"
+#include "phedra/design_variables.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+struct RepairOptions {
+  std::vector<VariableGroup> vary{VariableGroup::apex_heights, VariableGroup::directions};
+  /// The part of the flexion interval around t* that must be buildable: from
+  /// t* towards each limit, this fraction of the way (1: all of it).
+  double required_fraction = 1.0;
+  /// When the required part cannot be reached: the widest part found (tried at
+  /// 3/4, 1/2, 1/4 and t* alone), reported as such.
+  bool widest_fallback = true;
+  double shape_target = 0.005;       ///< the shape margin every panel keeps (room to edit)
+  std::size_t motion_samples = 24;   ///< samples a side of the optimizer's motion margins
+  std::size_t restarts = 4;          ///< perturbed starts after the input
+  std::size_t max_evaluations = 3000;  ///< per local search
+  double max_seconds = 60.0;         ///< in all
+  unsigned seed = 1;
+};
+
+/// One preset field the repair changed.
+struct FieldChange {
+  std::string field;
+  nlohmann::json before, after;
+  double change = 0.0;    ///< after - before (a length), or the turn in degrees for a direction
+  double relative = 0.0;  ///< |change| over the model size (a direction: the turn in radians)
+};
+
+struct RepairResult {
+  /// A design buildable over the required part (or, with the fallback, over a
+  /// smaller part around t*: `fraction` says how much) was found.
+  bool found = false;
+  bool already_buildable = false;  ///< the input met the requirement: nothing changed
+  double fraction = 0.0;           ///< the part of the interval the result is buildable over (as required_fraction)
+  nlohmann::json preset;           ///< the repaired preset object (when found)
+  BuildabilityReport before, after;
+  std::vector<FieldChange> changes;
+  double distance = 0.0;           ///< relative to the model size (design_variables.h)
+  std::size_t evaluations = 0;     ///< designs built by the search
+  std::size_t starts = 0;          ///< local searches run
+  double seconds = 0.0;
+  std::vector<std::string> notes;  ///< what could not be varied
+  /// When not found: how close it came and which constraint stayed violated.
+  std::string closest;
+};
+
+/// Repairs `preset` (a preset object). InvalidInputError for a preset that does
+/// not build and for bad options.
+RepairResult repair(const nlohmann::json& preset, const RepairOptions& options = {});
+
+/// The buildable part of a report as a fraction of the way from t* to each
+/// limit (the smaller side): 1 for the whole interval, 0 for t* alone or none.
+double buildable_fraction(const BuildabilityReport& report);
+
+}  // namespace phedra

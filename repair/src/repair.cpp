@@ -1,0 +1,338 @@
+#include "phedra/repair.h"
+
+#include "phedra/errors.h"
+#include "phedra/panel_nets.h"
+#include "phedra/self_intersection.h"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+
+namespace phedra {
+namespace {
+
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// The required part of the interval: from t* this fraction of the way to each limit.
+std::pair<double, double> required_range(const Assembly& a, double fraction) {
+  const double t = a.t_star();
+  const FlexionInterval& f = a.flexion_interval();
+  if (fraction >= 1.0) return {f.lower.t, f.upper.t};
+  return {t - fraction * (t - f.lower.t), t + fraction * (f.upper.t - t)};
+}
+
+/// The optimizer's view of a design: its constraint values (<= 0 satisfied).
+class Problem {
+ public:
+  Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size)
+      : variables_(variables), options_(options), panels_(panels), size_(size) {}
+
+  void set_motion(bool on, double fraction) {
+    motion_ = on;
+    fraction_ = fraction;
+    cached_.clear();
+  }
+  std::size_t constraints() const { return panels_ + 2; }
+  std::size_t evaluations() const { return evaluations_; }
+
+  /// Constraint values at x: per member face `shape_target - shape margin`, then
+  /// the deepest penetration (x 10 over the model size) and the furthest hinge
+  /// past shut (radians) over the required motion (0 without the motion).
+  const std::vector<double>& at(const double* x) {
+    if (!cached_.empty() && std::equal(cached_x_.begin(), cached_x_.end(), x)) return cached_;
+    cached_x_.assign(x, x + variables_.size());
+    cached_.assign(constraints(), 1.0);  // a design that does not build violates everything
+    ++evaluations_;
+    try {
+      const Design d = design_from_json(variables_.preset_at(cached_x_));
+      const Assembly& a = d.assembly;
+      std::size_t k = 0;
+      for (std::size_t m = 0; m < a.member_count(); ++m) {
+        for (std::size_t f = 0; f < a.topology(m).face_count() && k < panels_; ++f, ++k) {
+          cached_[k] = options_.shape_target - std::clamp(shape_margin(panel_nets(a, m, f)), -1.0, 1.0);
+        }
+      }
+      if (k != panels_) {
+        std::fill(cached_.begin(), cached_.end(), 1.0);  // another topology (a curve's segment count changed)
+        return cached_;
+      }
+      cached_[panels_] = cached_[panels_ + 1] = 0.0;
+      if (motion_) {
+        const auto [from, to] = required_range(a, fraction_);
+        const MotionMargins m = motion_margins(d, from, to, options_.motion_samples);
+        cached_[panels_] = 10.0 * m.depth / size_;
+        cached_[panels_ + 1] = m.folded + 1e-6;  // a hinge must stay open inside the range
+      }
+    } catch (const Error&) {
+    }
+    return cached_;
+  }
+
+ private:
+  const DesignVariables& variables_;
+  const RepairOptions& options_;
+  std::size_t panels_;
+  double size_;
+  bool motion_ = false;
+  double fraction_ = 1.0;
+  std::size_t evaluations_ = 0;
+  std::vector<double> cached_x_, cached_;
+};
+
+struct Search {
+  const DesignVariables& variables;
+  Problem& problem;
+};
+
+double objective(unsigned n, const double* x, double* gradient, void* data) {
+  const Search& s = *static_cast<const Search*>(data);
+  double sum = 0.0;
+  for (unsigned k = 0; k < n; ++k) {
+    const DesignVariable& v = s.variables.variables()[k];
+    const double d = (x[k] - v.start) / v.scale;
+    sum += d * d;
+    if (gradient) gradient[k] = 2.0 * d / v.scale;
+  }
+  return sum;
+}
+
+void constraints(unsigned m, double* result, unsigned, const double* x, double* gradient, void* data) {
+  Search& s = *static_cast<Search*>(data);
+  const std::vector<double>& c = s.problem.at(x);
+  std::copy(c.begin(), c.begin() + m, result);
+  (void)gradient;  // COBYLA asks for none
+}
+
+/// One local search from x with COBYLA; returns the point it ends at.
+std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                 const RepairOptions& options, double seconds_left) {
+  const std::size_t n = variables.size();
+  nlopt::opt opt(nlopt::LN_COBYLA, static_cast<unsigned>(n));
+  Search search{variables, problem};
+  opt.set_min_objective(objective, &search);
+  opt.add_inequality_mconstraint(constraints, &search, std::vector<double>(problem.constraints(), 1e-9));
+  std::vector<double> step(n), lower(n), upper(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const DesignVariable& v = variables.variables()[k];
+    step[k] = 0.02 * v.scale;
+    const double reach = v.kind == DesignVariable::Kind::turn ? 0.5 * std::numbers::pi : 0.5 * v.scale;
+    lower[k] = v.start - reach;
+    upper[k] = v.start + reach;
+    x[k] = std::clamp(x[k], lower[k], upper[k]);
+  }
+  opt.set_lower_bounds(lower);
+  opt.set_upper_bounds(upper);
+  opt.set_initial_step(step);
+  std::vector<double> tolerance(n);
+  for (std::size_t k = 0; k < n; ++k) tolerance[k] = 1e-7 * variables.variables()[k].scale;
+  opt.set_xtol_abs(tolerance);
+  opt.set_maxeval(static_cast<int>(options.max_evaluations));
+  opt.set_maxtime(std::max(0.01, seconds_left));
+  double value = 0.0;
+  try {
+    opt.optimize(x, value);
+  } catch (const nlopt::roundoff_limited&) {
+  } catch (const std::runtime_error&) {  // NLopt's generic failure: keep where it stopped
+  }
+  return x;
+}
+
+/// The buildability the result is judged by: the report itself, 200 samples a side.
+BuildabilityReport verify(const json& preset) {
+  BuildabilityOptions options;
+  options.diagnosis.hints = false;
+  options.sweep.samples_per_side = 200;
+  return assess_buildability(design_from_json(preset), nullptr, options);
+}
+
+std::string pointer_field(const json::json_pointer& pointer) {
+  // "/tube/apex_heights/3" -> "tube.apex_heights[3]"
+  std::string out;
+  const std::string text = pointer.to_string();
+  std::size_t start = 1;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find('/', start), text.size());
+    const std::string part = text.substr(start, end - start);
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    out += index ? "[" + part + "]" : (out.empty() ? part : "." + part);
+    start = end + 1;
+  }
+  return out;
+}
+
+/// Every number that differs between two presets, as fields (directions as turns).
+std::vector<FieldChange> changes_between(const json& before, const json& after, double size,
+                                         const json::json_pointer& at = json::json_pointer()) {
+  std::vector<FieldChange> out;
+  const json& b = before.at(at);
+  const json& a = after.at(at);
+  if (at.to_string().rfind("/directions/", 0) == 0 && b.is_array() && b.size() == 3) {
+    if (b == a) return out;
+    const auto u = b.get<std::vector<double>>(), v = a.get<std::vector<double>>();
+    const double dot = u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+    const double cross = std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                                   std::pow(u[0] * v[1] - u[1] * v[0], 2));
+    const double turn = std::atan2(cross, dot);
+    out.push_back({pointer_field(at), b, a, turn * 180.0 / std::numbers::pi, turn});
+    return out;
+  }
+  if (b.is_number() && a.is_number()) {
+    if (b != a) out.push_back({pointer_field(at), b, a, a.get<double>() - b.get<double>(), std::abs(a.get<double>() - b.get<double>()) / size});
+    return out;
+  }
+  if (b.is_array() && a.is_array() && a.size() == b.size()) {
+    for (std::size_t k = 0; k < b.size(); ++k) {
+      const auto more = changes_between(before, after, size, at / k);
+      out.insert(out.end(), more.begin(), more.end());
+    }
+  } else if (b.is_object() && a.is_object()) {
+    for (const auto& [key, value] : b.items()) {
+      if (!a.contains(key)) continue;
+      const auto more = changes_between(before, after, size, at / key);
+      out.insert(out.end(), more.begin(), more.end());
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+double buildable_fraction(const BuildabilityReport& r) {
+  const auto range = r.interval();
+  if (!range || !r.swept) return 0.0;
+  const double below = r.t_star - r.t_lambda, above = r.t_mu - r.t_star;
+  const double low = below > 0.0 ? (r.t_star - range->first) / below : 1.0;
+  const double high = above > 0.0 ? (range->second - r.t_star) / above : 1.0;
+  return std::clamp(std::min(low, high), 0.0, 1.0);
+}
+
+RepairResult repair(const json& preset, const RepairOptions& options) {
+  if (!(options.required_fraction >= 0.0 && options.required_fraction <= 1.0)) {
+    throw InvalidInputError("--require", "the buildable part must be a fraction in [0, 1]");
+  }
+  const Clock::time_point start = Clock::now();
+  RepairResult r;
+  const Design input = design_from_json(preset);
+  const double size = input.assembly.model_size();
+  r.before = verify(preset);
+  const double required = options.required_fraction;
+  auto meets = [&](const BuildabilityReport& b, double fraction) {
+    return b.panels_simple() && b.interval() && buildable_fraction(b) >= fraction - 1e-12;
+  };
+  if (meets(r.before, required)) {
+    r.found = r.already_buildable = true;
+    r.fraction = buildable_fraction(r.before);
+    r.preset = preset;
+    r.after = r.before;
+    r.seconds = seconds_since(start);
+    return r;
+  }
+  const DesignVariables variables(preset, options.vary, size);
+  r.notes = variables.notes();
+  std::size_t panels = 0;
+  for (std::size_t m = 0; m < input.assembly.member_count(); ++m) panels += input.assembly.topology(m).face_count();
+  Problem problem(variables, options, panels, size);
+  std::mt19937_64 rng(options.seed);
+  std::normal_distribution<double> normal;
+
+  struct Candidate {
+    std::vector<double> x;
+    double distance = std::numeric_limits<double>::infinity();
+    double fraction = -1.0;
+    BuildabilityReport report;
+  };
+  std::optional<Candidate> best;         // meets the requirement, nearest
+  std::optional<Candidate> best_partial; // simple panels, widest part
+  std::optional<Candidate> closest;      // the least bad, for the report
+
+  auto consider = [&](const std::vector<double>& x, double fraction_wanted) {
+    Candidate c;
+    c.x = x;
+    c.distance = variables.distance(x);
+    try {
+      c.report = verify(variables.preset_at(x));
+    } catch (const Error&) {
+      return false;
+    }
+    c.fraction = c.report.panels_simple() ? buildable_fraction(c.report) : -1.0;
+    if (!closest || c.report.invalid.size() < closest->report.invalid.size() ||
+        (c.report.invalid.size() == closest->report.invalid.size() && c.fraction > closest->fraction)) {
+      closest = c;
+    }
+    if (meets(c.report, fraction_wanted)) {
+      if (!best || c.distance < best->distance) best = c;
+      return true;
+    }
+    if (c.fraction >= 0.0 && (!best_partial || c.fraction > best_partial->fraction ||
+                              (c.fraction == best_partial->fraction && c.distance < best_partial->distance))) {
+      best_partial = c;
+    }
+    return false;
+  };
+  auto time_left = [&] { return options.max_seconds - seconds_since(start); };
+  auto run = [&](std::vector<double> x, double fraction) {
+    ++r.starts;
+    problem.set_motion(false, fraction);
+    x = local_search(variables, problem, x, options, time_left());
+    problem.set_motion(true, fraction);
+    x = local_search(variables, problem, x, options, time_left());
+    return consider(x, fraction);
+  };
+
+  const std::vector<double> x0 = variables.start();
+  for (std::size_t s = 0; s <= options.restarts && time_left() > 0.0; ++s) {
+    std::vector<double> x = x0;
+    if (s > 0) {
+      for (std::size_t k = 0; k < x.size(); ++k) x[k] += 0.03 * static_cast<double>(s) * variables.variables()[k].scale * normal(rng);
+    }
+    if (run(x, required)) break;  // the nearest from this start: good enough
+  }
+  if (best) {
+    r.found = true;
+    r.fraction = buildable_fraction(best->report);
+  } else if (options.widest_fallback) {
+    for (const double fraction : {0.75, 0.5, 0.25, 0.0}) {
+      if (fraction >= required || time_left() <= 0.0) continue;
+      const std::vector<double> from = best_partial ? best_partial->x : x0;
+      if (run(from, fraction)) break;
+    }
+    if (best) {
+      r.found = true;
+      r.fraction = buildable_fraction(best->report);
+    }
+  }
+  r.evaluations = problem.evaluations();
+  if (r.found) {
+    r.preset = variables.preset_at(best->x);
+    r.after = best->report;
+    r.distance = best->distance;
+    r.changes = changes_between(preset, r.preset, size);
+  } else {
+    r.after = closest ? closest->report : r.before;
+    const BuildabilityReport& c = r.after;
+    if (!c.panels_simple()) {
+      r.closest = "no design near the input has every panel simple: at best " + std::to_string(c.invalid.size()) +
+                  " stay not simple (panels " + c.invalid_list() + ")";
+    } else if (c.motion.at_t_star) {
+      r.closest = "every panel can be made simple, but the configuration at t* then collides: " +
+                  describe(*c.motion.at_t_star, c.members > 1);
+    } else {
+      r.closest = "the best design found is buildable over " + std::to_string(static_cast<int>(100.0 * buildable_fraction(c))) +
+                  " % of the way from t* to the limits only";
+    }
+  }
+  r.seconds = seconds_since(start);
+  return r;
+}
+
+}  // namespace phedra
