@@ -9,7 +9,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  catch2 libbenchmark-dev
+  catch2 libbenchmark-dev libnlopt-cxx-dev
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
 )

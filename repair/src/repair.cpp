@@ -113,15 +113,38 @@ void constraints(unsigned m, double* result, unsigned, const double* x, double* 
   (void)gradient;  // COBYLA asks for none
 }
 
-/// One local search from x with COBYLA; returns the point it ends at.
-std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
-                                 const RepairOptions& options, double seconds_left) {
+/// The summed violations (an exact penalty: it reaches zero, where squares only
+/// approach it), what the feasibility phase drives to zero; the first point
+/// where they vanish ends the search (nlopt::forced_stop).
+struct Feasibility {
+  Search search;
+  std::vector<double> found;
+};
+
+double violation(unsigned n, const double* x, double* gradient, void* data) {
+  Feasibility& f = *static_cast<Feasibility*>(data);
+  const std::vector<double>& c = f.search.problem.at(x);
+  double sum = 0.0;
+  for (double v : c) sum += v > 0.0 ? v : 0.0;
+  (void)gradient;
+  if (sum == 0.0) {
+    f.found.assign(x, x + n);
+    throw nlopt::forced_stop();
+  }
+  return sum;
+}
+
+double total_violation(Problem& problem, const std::vector<double>& x) {
+  double sum = 0.0;
+  for (double v : problem.at(x.data())) sum += v > 0.0 ? v : 0.0;
+  return sum;
+}
+
+/// Bounds, steps and stopping rules shared by the local searches.
+void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<double>& x, const RepairOptions& options,
+               double seconds_left) {
   const std::size_t n = variables.size();
-  nlopt::opt opt(nlopt::LN_COBYLA, static_cast<unsigned>(n));
-  Search search{variables, problem};
-  opt.set_min_objective(objective, &search);
-  opt.add_inequality_mconstraint(constraints, &search, std::vector<double>(problem.constraints(), 1e-9));
-  std::vector<double> step(n), lower(n), upper(n);
+  std::vector<double> step(n), lower(n), upper(n), tolerance(n);
   for (std::size_t k = 0; k < n; ++k) {
     const DesignVariable& v = variables.variables()[k];
     step[k] = 0.02 * v.scale;
@@ -129,22 +152,52 @@ std::vector<double> local_search(const DesignVariables& variables, Problem& prob
     lower[k] = v.start - reach;
     upper[k] = v.start + reach;
     x[k] = std::clamp(x[k], lower[k], upper[k]);
+    tolerance[k] = 1e-7 * v.scale;
   }
   opt.set_lower_bounds(lower);
   opt.set_upper_bounds(upper);
   opt.set_initial_step(step);
-  std::vector<double> tolerance(n);
-  for (std::size_t k = 0; k < n; ++k) tolerance[k] = 1e-7 * variables.variables()[k].scale;
   opt.set_xtol_abs(tolerance);
   opt.set_maxeval(static_cast<int>(options.max_evaluations));
   opt.set_maxtime(std::max(0.01, seconds_left));
+}
+
+void run_opt(nlopt::opt& opt, std::vector<double>& x) {
   double value = 0.0;
   try {
     opt.optimize(x, value);
   } catch (const nlopt::roundoff_limited&) {
+  } catch (const nlopt::forced_stop&) {
   } catch (const std::runtime_error&) {  // NLopt's generic failure: keep where it stopped
   }
-  return x;
+}
+
+/// Feasibility: minimise the summed violations with Subplex (Nelder-Mead on
+/// subspaces: robust where the margins have kinks), stopping where they vanish.
+/// Returns the feasible point, or where the search ended.
+std::vector<double> feasible_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                    const RepairOptions& options, double seconds_left) {
+  if (total_violation(problem, x) == 0.0) return x;
+  nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
+  Feasibility feasibility{{variables, problem}, {}};
+  opt.set_min_objective(violation, &feasibility);
+  configure(opt, variables, x, options, seconds_left);
+  run_opt(opt, x);
+  return feasibility.found.empty() ? x : feasibility.found;
+}
+
+/// One local search from x with COBYLA; returns the point it ends at.
+std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                 const RepairOptions& options, double seconds_left) {
+  nlopt::opt opt(nlopt::LN_COBYLA, static_cast<unsigned>(variables.size()));
+  Search search{variables, problem};
+  opt.set_min_objective(objective, &search);
+  opt.add_inequality_mconstraint(constraints, &search, std::vector<double>(problem.constraints(), 1e-9));
+  configure(opt, variables, x, options, seconds_left);
+  const std::vector<double> feasible = x;
+  run_opt(opt, x);
+  // COBYLA may end outside the feasible set; the start was inside.
+  return total_violation(problem, x) == 0.0 ? x : feasible;
 }
 
 /// The buildability the result is judged by: the report itself, 200 samples a side.
@@ -280,16 +333,20 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     return false;
   };
   auto time_left = [&] { return options.max_seconds - seconds_since(start); };
+  // From a start: make the shapes feasible, then the motion, then move to the
+  // nearest feasible point (COBYLA from inside the feasible set).
   auto run = [&](std::vector<double> x, double fraction) {
     ++r.starts;
     problem.set_motion(false, fraction);
-    x = local_search(variables, problem, x, options, time_left());
+    x = feasible_search(variables, problem, x, options, time_left());
     problem.set_motion(true, fraction);
-    x = local_search(variables, problem, x, options, time_left());
+    x = feasible_search(variables, problem, x, options, time_left());
+    if (total_violation(problem, x) == 0.0) x = local_search(variables, problem, x, options, time_left());
     return consider(x, fraction);
   };
 
   const std::vector<double> x0 = variables.start();
+  consider(x0, required);  // the input itself: the widest part to beat
   for (std::size_t s = 0; s <= options.restarts && time_left() > 0.0; ++s) {
     std::vector<double> x = x0;
     if (s > 0) {
