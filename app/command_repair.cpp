@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
+#include "phedra/preset.h"
 #include "phedra/repair.h"
 #include "support.h"
 
@@ -16,6 +17,7 @@ namespace {
 struct RepairCommandOptions {
   std::string preset;
   std::string output;
+  std::string closest;
   std::string vary = "apex_heights,directions";
   RepairOptions repair;
   bool no_fallback = false;
@@ -23,6 +25,28 @@ struct RepairCommandOptions {
 };
 
 std::string percent(double fraction) { return format_short(100.0 * fraction) + " %"; }
+
+/// `preset` written with the keys in the order the input file has them (a
+/// reference case's preset object when the file is one), renamed and described.
+std::string preset_text(const nlohmann::json& preset, const std::string& input_path, const std::string& name,
+                        const std::string& description) {
+  nlohmann::ordered_json document = nlohmann::ordered_json::parse(read_text_file(input_path));
+  if (document.is_object() && document.contains("preset") && !document.contains("trajectory")) {
+    document = nlohmann::ordered_json(document["preset"]);
+  }
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  if (document.is_object()) {
+    for (const auto& [key, value] : document.items()) {
+      if (preset.contains(key)) out[key] = nlohmann::ordered_json::parse(preset[key].dump());
+    }
+  }
+  for (const auto& [key, value] : preset.items()) {
+    if (!out.contains(key)) out[key] = nlohmann::ordered_json::parse(value.dump());
+  }
+  out["name"] = name;
+  out["description"] = description;
+  return out.dump(2) + "\n";
+}
 
 nlohmann::json result_json(const RepairResult& r) {
   nlohmann::json changes = nlohmann::json::array();
@@ -63,26 +87,38 @@ void add_repair_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_flag("--no-fallback", o->no_fallback,
                 "Fail (exit 1) rather than settle for a smaller buildable part than --require asks");
-  sub->add_option("--restarts", o->repair.restarts, "Perturbed starts after the input when the nearest search fails")
-      ->check(CLI::Range(0, 100))
+  sub->add_option("--restarts", o->repair.restarts,
+                  "Perturbed starts after the input for the search of simple panels (their set need not be connected)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  sub->add_option("--max-seconds", o->repair.max_seconds, "Time for the search")->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_option("--max-seconds", o->repair.max_seconds,
+                  "Time for the search (half of it at most for the panel shapes); the best found by then is reported")->check(CLI::PositiveNumber)->capture_default_str();
+  sub->add_option("--closest", o->closest,
+                  "When nothing buildable is found: write the closest design to this file (.json), to inspect");
   sub->add_flag("--json", o->json, "Print JSON instead of text");
   sub->callback([o, &context] {
     if (std::filesystem::path(o->output).extension() != ".json") {
-      throw InvalidInputError("output", "the repaired preset is written as .json");
+      throw InvalidInputError("--output", "the repaired preset is written as .json: \"" + o->output + "\"");
+    }
+    if (!o->closest.empty() && std::filesystem::path(o->closest).extension() != ".json") {
+      throw InvalidInputError("--closest", "the closest design is written as .json: \"" + o->closest + "\"");
     }
     o->repair.vary = parse_variable_groups(o->vary);
     o->repair.widest_fallback = !o->no_fallback;
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     const RepairResult r = repair(loaded.preset, o->repair);
+    const std::string name = loaded.preset.value("name", std::string("unnamed"));
     if (r.found && !r.already_buildable) {
-      nlohmann::json out = r.preset;
-      const std::string name = loaded.preset.value("name", std::string("unnamed"));
-      out["name"] = name + "-repaired";
-      out["description"] = "Repaired by phedra repair from \"" + name + "\" (varied: " + o->vary +
-                           "): " + r.after.summary() + ".";
-      emit(out.dump(2) + "\n", o->output, o->preset, context.out);
+      emit(preset_text(r.preset, o->preset, name + "-repaired",
+                       "Repaired by phedra repair from \"" + name + "\" (varied: " + o->vary + "): " +
+                           r.after.summary() + "."),
+           o->output, o->preset, context.out);
+    }
+    if (!r.found && !o->closest.empty() && r.closest_preset.is_object()) {
+      emit(preset_text(r.closest_preset, o->preset, name + "-closest",
+                       "The closest design phedra repair found to a buildable one from \"" + name +
+                           "\" (varied: " + o->vary + "); not buildable: " + r.after.summary() + "."),
+           o->closest, o->preset, context.out);
     }
     if (o->json) {
       context.out << result_json(r).dump(2) << '\n';
@@ -110,7 +146,9 @@ void add_repair_command(CLI::App& app, Context& context) {
         }
         out << "wrote " << o->output << '\n';
       } else {
-        out << "no buildable design found: " << r.closest << "; nothing written\n";
+        out << "no buildable design found: " << r.closest << "; nothing written";
+        if (!o->closest.empty() && r.closest_preset.is_object()) out << " (the closest design: " << o->closest << ")";
+        out << '\n';
       }
       for (const std::string& note : r.notes) out << "note: " << note << '\n';
       out << "search: " << r.evaluations << " designs built, " << r.starts << " local searches, "

@@ -211,7 +211,9 @@ double shape_margin(const PanelNets& p) {
   }
   std::array<double, 4> size{};
   for (int k = 0; k < 4; ++k) size[k] = std::abs(g[k]);
-  if (negative == 2) return -*std::min_element(size.begin(), size.end());
+  // A bow-tie becomes simple when one corner turns over, or through a triangle
+  // (an edge scale through zero): continuous across both.
+  if (negative == 2) return -std::min(*std::min_element(size.begin(), size.end()), collapse);
   double margin = 0.0;
   if (negative == 0 || negative == 4) {
     std::sort(size.begin(), size.end());

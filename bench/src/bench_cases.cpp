@@ -1,4 +1,5 @@
 #include "phedra/bench_cases.h"
+#include "phedra/preset.h"
 
 #include "phedra/tube_array.h"
 
@@ -57,6 +58,17 @@ Design open_design_with_panels(std::size_t panels) {
   const std::size_t n = 99;  // 100 faces a strip with the boundary columns
   const std::size_t profiles = std::max<std::size_t>(2, panels / (n + 1) + 1);
   return Design{Assembly(PHedron(general_open_input(profiles, n)), "P-hedron"), false, "open P-hedron"};
+}
+
+nlohmann::json unbuildable_default_preset() {
+  return nlohmann::json::parse(R"json({"name":"mixed-signs","description":"General open P-hedron with mixed signs on a helical trajectory (the default preset).","trajectory":[[3.0,0.0,0.05],[3.2167598036169744,0.6546888692426079,0.377015115293407],[2.8689054012063293,1.277818395197999,0.6791926581726428],[2.163646846736903,1.8393505559203014,1.0005003751699775],[1.6464170358796948,2.312216636696908,1.3673178189568194],[1.4253243607030766,2.6736220801843062,1.7641831092731612],[1.0440893585695001,2.9061453003547957,2.148008514332518],[0.188103885952204,2.9985774918164374,2.487695112717165],[-0.8125784574043364,2.9464629514128555,2.792724998309569],[-1.4222316965454576,2.7523138658454296,3.104443486905766],[-1.639453240718045,2.4254892114587703,3.458046423546177]],"directions":[[0.9800665778412416,0.19866933079506122,0.0],[0.8177730638851126,0.5755408030573987,0.0],[0.5933074514784253,0.8049759425101944,0.0],[0.4366157869462234,0.8996480726313651,0.0],[0.3804657613697371,0.9247950067043756,0.0],[0.3672319620904478,0.9301293920843486,0.0],[0.3072187498726563,0.951638922977976,0.0],[0.1252026745883706,0.9921311860212432,0.0],[-0.19849652417548783,0.9801015916170374,0.0],[-0.5763440175598852,0.817207179008439,0.0],[-0.8553881157690059,0.5179876170345675,0.0]],"apex_heights":[-1.5,1.0,-0.5,2.2,0.4,3.0,1.6],"signs":"+-+-+"})json");
+}
+
+nlohmann::json unbuildable_open_preset(std::size_t strips) {
+  nlohmann::json p = preset_to_json(general_open_input(strips + 1, 5, true));
+  nlohmann::json& h = p["apex_heights"];
+  for (std::size_t j = 0; j < h.size(); ++j) h[j] = 0.7 * static_cast<double>(j) - 1.0;  // monotone: '+' faces crossed
+  return p;
 }
 
 }  // namespace phedra::bench

@@ -6,6 +6,7 @@
 #include "phedra/interval_check.h"
 #include "phedra/number_format.h"
 #include "phedra/phedron.h"
+#include "phedra/repair.h"
 
 #include <malloc.h>
 #include <sys/wait.h>
@@ -170,6 +171,7 @@ class Runner {
     interval_figures();
     closure_figure();
     gltf_figures();
+    repair_figures();
     return report_;
   }
 
@@ -349,6 +351,28 @@ class Runner {
           sizes.file / sizes.payload, "x", morph ? std::optional<double>(1.1) : std::nullopt);
       add("gltf." + kind + "_megabytes", "GLB file size, " + what, sizes.file / 1e6, "MB");
     }
+  }
+
+  void repair_one(const std::string& id, const std::string& what, const nlohmann::json& preset,
+                  std::optional<double> target) {
+    announce("repair, " + what);
+    const RepairResult r = repair(preset);
+    const std::string outcome = r.found ? (r.fraction >= 1.0 ? "repaired over the whole interval"
+                                                             : "repaired over " + format_short(100.0 * r.fraction) + " % of it")
+                                        : "NOT repaired";
+    add("repair." + id + "_s",
+        "phedra repair of " + what + " (" + std::to_string(r.before.panels) + " panels): " + outcome + ", " +
+            std::to_string(r.evaluations) + " designs built, distance " + format_short(r.distance),
+        r.seconds, "s", target);
+  }
+
+  void repair_figures() {
+    repair_one("default_size", "the default preset before it was made buildable (10 bow-ties, a collision at t*)",
+               unbuildable_default_preset(), 1.0);
+    const std::size_t strips = options_.quick ? 20 : 100;
+    repair_one("strips_" + std::to_string(strips),
+               "an open design of " + std::to_string(strips) + " strips, mixed signs, monotone heights",
+               unbuildable_open_preset(strips), options_.quick ? std::optional<double>() : std::optional<double>(10.0));
   }
 
   const BenchOptions& options_;

@@ -77,7 +77,11 @@ DesignVariables::DesignVariables(const json& preset, const std::vector<VariableG
         // A core-schema tube repeats its first two heights at the end: keep it closed.
         if (n >= 6 && h[n - 2] == h[0] && h[n - 1] == h[1]) {
           const std::size_t first = variables_.size();
-          list(root / "apex_heights", "apex_heights", n - 2);
+          // An anti-parallelogram one (n = 6, every sign '-') keeps z3 = z0 + z2 - z1 too.
+          const json signs = preset_.value("signs", json());
+          const bool anti = n == 6 && signs.is_string() && signs.get<std::string>().find('+') == std::string::npos;
+          list(root / "apex_heights", "apex_heights", anti ? 3 : n - 2);
+          if (anti) ties_.push_back({root / "apex_heights" / 3, {{first, 1.0}, {first + 2, 1.0}, {first + 1, -1.0}}});
           ties_.push_back({root / "apex_heights" / (n - 2), {{first, 1.0}}});
           ties_.push_back({root / "apex_heights" / (n - 1), {{first + 1, 1.0}}});
         } else {
@@ -154,7 +158,9 @@ DesignVariables::DesignVariables(const json& preset, const std::vector<VariableG
     }
   }
   if (variables_.empty()) {
-    throw InvalidInputError("--vary", "nothing to change: the preset has no numbers in the groups asked for");
+    std::string why;
+    for (const std::string& note : notes_) why += "; " + note;
+    throw InvalidInputError("--vary", "nothing to change: the preset has no numbers in the groups asked for" + why);
   }
 }
 

@@ -7,10 +7,12 @@
 #include <nlopt.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <cstdlib>
 #include <random>
 
 namespace phedra {
@@ -31,21 +33,55 @@ std::pair<double, double> required_range(const Assembly& a, double fraction) {
   return {t - fraction * (t - f.lower.t), t + fraction * (f.upper.t - t)};
 }
 
+/// How the panel shapes enter the constraints.
+enum class ShapeMode {
+  /// Every edge of the general net at least `edge_target` of the model size long
+  /// and pointing the way its axial edge does, and every axial face simple: then
+  /// every panel has its axial face's shape (MATH.md section 9). Stricter than
+  /// needed, but the edge lengths move continuously where the panel margins have
+  /// local minima (a sign change of an edge scale walks from row to row).
+  positive_net,
+  /// Every panel's shape margin at least `shape_target` (the exact rule).
+  exact,
+};
+
+constexpr std::size_t slots_per_face = 5;
+
+/// The positive-net constraint values of one face (<= 0 satisfied).
+std::array<double, slots_per_face> positive_net_values(const PanelNets& p, double size, double edge_target,
+                                                       double shape_target) {
+  std::array<double, slots_per_face> out{};
+  if (p.boundary) {
+    out[0] = shape_target - std::clamp(shape_margin(p), -1.0, 1.0);
+    return out;
+  }
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 axial = p.axial[(k + 1) % 4] - p.axial[k];
+    const double length = axial.norm();
+    const double along = length > 0.0 ? (p.general[(k + 1) % 4] - p.general[k]).dot(axial) / length : 0.0;
+    out[k] = std::min(edge_target - along / size, 1.0);
+  }
+  const PanelNets axial_only{p.axial, p.axial, false, p.row, p.column, p.net_columns};
+  out[4] = shape_target - std::clamp(shape_margin(axial_only), -1.0, 1.0);
+  return out;
+}
+
 /// The optimizer's view of a design: its constraint values (<= 0 satisfied).
 class Problem {
  public:
   Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size)
       : variables_(variables), options_(options), panels_(panels), size_(size) {}
 
-  void set_motion(bool on, double fraction) {
-    motion_ = on;
+  void set_mode(ShapeMode shapes, bool motion, double fraction) {
+    shapes_ = shapes;
+    motion_ = motion;
     fraction_ = fraction;
     cached_.clear();
   }
-  std::size_t constraints() const { return panels_ + 2; }
+  std::size_t constraints() const { return slots_per_face * panels_ + 2; }
   std::size_t evaluations() const { return evaluations_; }
 
-  /// Constraint values at x: per member face `shape_target - shape margin`, then
+  /// Constraint values at x: per member face its shape values (ShapeMode), then
   /// the deepest penetration (x 10 over the model size) and the furthest hinge
   /// past shut (radians) over the required motion (0 without the motion).
   const std::vector<double>& at(const double* x) {
@@ -59,19 +95,28 @@ class Problem {
       std::size_t k = 0;
       for (std::size_t m = 0; m < a.member_count(); ++m) {
         for (std::size_t f = 0; f < a.topology(m).face_count() && k < panels_; ++f, ++k) {
-          cached_[k] = options_.shape_target - std::clamp(shape_margin(panel_nets(a, m, f)), -1.0, 1.0);
+          const PanelNets nets = panel_nets(a, m, f);
+          double* slot = &cached_[slots_per_face * k];
+          if (shapes_ == ShapeMode::exact) {
+            slot[0] = options_.shape_target - std::clamp(shape_margin(nets), -1.0, 1.0);
+            std::fill(slot + 1, slot + slots_per_face, 0.0);
+          } else {
+            const auto values = positive_net_values(nets, size_, options_.edge_target, options_.shape_target);
+            std::copy(values.begin(), values.end(), slot);
+          }
         }
       }
       if (k != panels_) {
         std::fill(cached_.begin(), cached_.end(), 1.0);  // another topology (a curve's segment count changed)
         return cached_;
       }
-      cached_[panels_] = cached_[panels_ + 1] = 0.0;
+      const std::size_t motion = slots_per_face * panels_;
+      cached_[motion] = cached_[motion + 1] = 0.0;
       if (motion_) {
         const auto [from, to] = required_range(a, fraction_);
         const MotionMargins m = motion_margins(d, from, to, options_.motion_samples);
-        cached_[panels_] = 10.0 * m.depth / size_;
-        cached_[panels_ + 1] = m.folded + 1e-6;  // a hinge must stay open inside the range
+        cached_[motion] = 10.0 * m.depth / size_;
+        cached_[motion + 1] = m.folded + 1e-6;  // a hinge must stay open inside the range
       }
     } catch (const Error&) {
     }
@@ -83,6 +128,7 @@ class Problem {
   const RepairOptions& options_;
   std::size_t panels_;
   double size_;
+  ShapeMode shapes_ = ShapeMode::exact;
   bool motion_ = false;
   double fraction_ = 1.0;
   std::size_t evaluations_ = 0;
@@ -176,33 +222,75 @@ void run_opt(nlopt::opt& opt, std::vector<double>& x) {
 /// subspaces: robust where the margins have kinks), stopping where they vanish.
 /// Returns the feasible point, or where the search ended.
 std::vector<double> feasible_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
-                                    const RepairOptions& options, double seconds_left) {
+                                    const RepairOptions& options, double seconds_left, std::size_t evaluations) {
   if (total_violation(problem, x) == 0.0) return x;
   nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
   Feasibility feasibility{{variables, problem}, {}};
   opt.set_min_objective(violation, &feasibility);
   configure(opt, variables, x, options, seconds_left);
+  opt.set_maxeval(static_cast<int>(evaluations));
   run_opt(opt, x);
-  return feasibility.found.empty() ? x : feasibility.found;
+  if (!feasibility.found.empty()) return feasibility.found;
+  return x;
 }
 
-/// One local search from x with COBYLA; returns the point it ends at.
+/// The feasible point nearest `target` on the segment from `feasible` (found by
+/// bisection: the feasible part of the segment is taken as one piece).
+std::vector<double> towards(Problem& problem, const std::vector<double>& feasible, const std::vector<double>& target) {
+  auto at = [&](double a) {
+    std::vector<double> x(feasible.size());
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = target[k] + a * (feasible[k] - target[k]);
+    return x;
+  };
+  double infeasible = 0.0, ok = 1.0;
+  for (int step = 0; step < 10; ++step) {
+    const double middle = 0.5 * (infeasible + ok);
+    (total_violation(problem, at(middle)) == 0.0 ? ok : infeasible) = middle;
+  }
+  return ok < 1.0 ? at(ok) : feasible;
+}
+
+/// The nearest point: Subplex on distance^2 + weight * summed violations (an
+/// exact penalty: for a large enough weight its minimum is the constrained one,
+/// and Subplex copes with its kinks), keeping the nearest feasible design seen.
+struct Nearest {
+  Search search;
+  double weight = 100.0;
+  std::vector<double> best;
+  double best_distance = std::numeric_limits<double>::infinity();
+};
+
+double penalized(unsigned n, const double* x, double* gradient, void* data) {
+  Nearest& s = *static_cast<Nearest*>(data);
+  const double distance = objective(n, x, gradient, &s.search);
+  double sum = 0.0;
+  for (double v : s.search.problem.at(x)) sum += v > 0.0 ? v : 0.0;
+  if (sum == 0.0 && distance < s.best_distance) {
+    s.best_distance = distance;
+    s.best.assign(x, x + n);
+  }
+  return distance + s.weight * sum;
+}
+
+/// One local search from the feasible x; returns the nearest feasible design it saw.
 std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
-                                 const RepairOptions& options, double seconds_left) {
-  nlopt::opt opt(nlopt::LN_COBYLA, static_cast<unsigned>(variables.size()));
-  Search search{variables, problem};
-  opt.set_min_objective(objective, &search);
-  opt.add_inequality_mconstraint(constraints, &search, std::vector<double>(problem.constraints(), 1e-9));
+                                 const RepairOptions& options, double seconds_left, std::size_t evaluations) {
+  nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
+  Nearest nearest{{variables, problem}};
+  nearest.best = x;
+  nearest.best_distance = objective(static_cast<unsigned>(x.size()), x.data(), nullptr, &nearest.search);
+  opt.set_min_objective(penalized, &nearest);
   configure(opt, variables, x, options, seconds_left);
-  const std::vector<double> feasible = x;
+  opt.set_ftol_abs(1e-6);
+  opt.set_maxeval(static_cast<int>(evaluations));
   run_opt(opt, x);
-  // COBYLA may end outside the feasible set; the start was inside.
-  return total_violation(problem, x) == 0.0 ? x : feasible;
+  return nearest.best;
 }
 
 /// The buildability the result is judged by: the report itself, 200 samples a side.
-BuildabilityReport verify(const json& preset) {
+BuildabilityReport verify(const json& preset, bool sweep = true) {
   BuildabilityOptions options;
+  options.sweep_motion = sweep;
   options.diagnosis.hints = false;
   options.sweep.samples_per_side = 200;
   return assess_buildability(design_from_json(preset), nullptr, options);
@@ -277,6 +365,8 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   RepairResult r;
   const Design input = design_from_json(preset);
   const double size = input.assembly.model_size();
+  const DesignVariables variables(preset, options.vary, size);  // bad --vary: an error even when nothing is to do
+  r.notes = variables.notes();
   r.before = verify(preset);
   const double required = options.required_fraction;
   auto meets = [&](const BuildabilityReport& b, double fraction) {
@@ -290,8 +380,16 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     r.seconds = seconds_since(start);
     return r;
   }
-  const DesignVariables variables(preset, options.vary, size);
-  r.notes = variables.notes();
+  if (!r.before.self_crossing_members.empty()) {
+    // No numbers make it buildable: its closed linkage is a crossed four-bar.
+    const bool several = r.before.self_crossing_members.size() > 1;
+    r.closest = std::string(several ? "its anti-parallelogram tubes cross themselves" : "its anti-parallelogram tube crosses itself") +
+                " by kind (the closed linkage L0 is a crossed four-bar, MATH.md section 6): no change of "
+                "heights, directions or trajectory makes that buildable; a parallelogram tube (all '+') can be";
+    r.after = r.before;
+    r.seconds = seconds_since(start);
+    return r;
+  }
   std::size_t panels = 0;
   for (std::size_t m = 0; m < input.assembly.member_count(); ++m) panels += input.assembly.topology(m).face_count();
   Problem problem(variables, options, panels, size);
@@ -333,40 +431,79 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     return false;
   };
   auto time_left = [&] { return options.max_seconds - seconds_since(start); };
-  // From a start: make the shapes feasible, then the motion, then move to the
-  // nearest feasible point (COBYLA from inside the feasible set).
-  auto run = [&](std::vector<double> x, double fraction) {
-    ++r.starts;
-    problem.set_motion(false, fraction);
-    x = feasible_search(variables, problem, x, options, time_left());
-    problem.set_motion(true, fraction);
-    x = feasible_search(variables, problem, x, options, time_left());
-    if (total_violation(problem, x) == 0.0) x = local_search(variables, problem, x, options, time_left());
-    return consider(x, fraction);
-  };
-
   const std::vector<double> x0 = variables.start();
   consider(x0, required);  // the input itself: the widest part to beat
-  for (std::size_t s = 0; s <= options.restarts && time_left() > 0.0; ++s) {
-    std::vector<double> x = x0;
-    if (s > 0) {
-      for (std::size_t k = 0; k < x.size(); ++k) x[k] += 0.03 * static_cast<double>(s) * variables.variables()[k].scale * normal(rng);
+
+  // Stage 1, panel shapes alone (cheap: no motion): from the input and from
+  // perturbed starts (the simple designs need not form one connected set), a
+  // design with every panel simple (the positive net first, the exact rule when
+  // that fails), moved towards the input (bisection) and to the nearest one.
+  std::optional<Candidate> closest_shapes;  // the fewest panels not simple, when no start succeeds
+  auto simple_from = [&](const std::vector<double>& from) -> std::optional<std::vector<double>> {
+    ++r.starts;
+    std::vector<double> x = from;
+    problem.set_mode(ShapeMode::exact, false, required);
+    if (total_violation(problem, x) > 0.0) {
+      problem.set_mode(ShapeMode::positive_net, false, required);
+      x = feasible_search(variables, problem, x, options, time_left(), options.max_evaluations);
+      problem.set_mode(ShapeMode::exact, false, required);
+      if (total_violation(problem, x) > 0.0) x = feasible_search(variables, problem, from, options, time_left(), options.max_evaluations);
+      if (total_violation(problem, x) > 0.0) {
+        try {
+          Candidate c{x, variables.distance(x), -1.0, verify(variables.preset_at(x), false)};
+          if (!closest_shapes || c.report.invalid.size() < closest_shapes->report.invalid.size()) closest_shapes = c;
+        } catch (const Error&) {
+        }
+        return std::nullopt;
+      }
+      x = towards(problem, x, x0);
+      x = local_search(variables, problem, x, options, time_left(), options.max_evaluations);
     }
-    if (run(x, required)) break;  // the nearest from this start: good enough
+    return x;
+  };
+  std::vector<std::vector<double>> simple;
+  const double shape_time = 0.5 * options.max_seconds;
+  for (std::size_t s = 0; s <= options.restarts && seconds_since(start) < shape_time; ++s) {
+    std::vector<double> x = x0;
+    const double radius = std::min(0.4, 0.03 * static_cast<double>(s));
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] += radius * variables.variables()[k].scale * normal(rng);
+    if (std::optional<std::vector<double>> found = simple_from(x)) {
+      simple.push_back(std::move(*found));
+      if (simple.size() >= options.shape_candidates) break;
+    }
   }
+  std::sort(simple.begin(), simple.end(), [&](const auto& a, const auto& b) {
+    return variables.distance(a) < variables.distance(b);
+  });
+
+  // Stage 2, the motion: from each simple design (nearest first), no collision
+  // over the required part, then towards the input and to the nearest such design.
+  auto motion_from = [&](std::vector<double> x, double fraction) {
+    problem.set_mode(ShapeMode::exact, true, fraction);
+    x = feasible_search(variables, problem, x, options, time_left(), options.motion_evaluations);
+    if (total_violation(problem, x) == 0.0) {
+      x = towards(problem, x, x0);
+      x = local_search(variables, problem, x, options, time_left(), options.motion_evaluations);
+    }
+    return consider(x, fraction);
+  };
+  for (const std::vector<double>& x : simple) {
+    if (time_left() <= 0.0 || motion_from(x, required)) break;
+  }
+  if (!best && options.widest_fallback && !simple.empty()) {
+    for (const double fraction : {0.75, 0.5, 0.25, 0.0}) {
+      if (fraction >= required || time_left() <= 0.0) continue;
+      if (motion_from(best_partial ? best_partial->x : simple.front(), fraction)) break;
+    }
+  }
+  if (!best && options.widest_fallback && best_partial && best_partial->fraction > 0.0) best = best_partial;
   if (best) {
     r.found = true;
     r.fraction = buildable_fraction(best->report);
-  } else if (options.widest_fallback) {
-    for (const double fraction : {0.75, 0.5, 0.25, 0.0}) {
-      if (fraction >= required || time_left() <= 0.0) continue;
-      const std::vector<double> from = best_partial ? best_partial->x : x0;
-      if (run(from, fraction)) break;
-    }
-    if (best) {
-      r.found = true;
-      r.fraction = buildable_fraction(best->report);
-    }
+  }
+  if (!best && closest && !closest->report.panels_simple() && closest_shapes &&
+      closest_shapes->report.invalid.size() < closest->report.invalid.size()) {
+    closest = closest_shapes;
   }
   r.evaluations = problem.evaluations();
   if (r.found) {
@@ -376,6 +513,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     r.changes = changes_between(preset, r.preset, size);
   } else {
     r.after = closest ? closest->report : r.before;
+    r.closest_preset = variables.preset_at(closest ? closest->x : x0);
     const BuildabilityReport& c = r.after;
     if (!c.panels_simple()) {
       r.closest = "no design near the input has every panel simple: at best " + std::to_string(c.invalid.size()) +

@@ -6,6 +6,8 @@
 #include "phedra/control_polylines.h"
 #include "phedra/design.h"
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 
 namespace phedra::bench {
@@ -28,5 +30,15 @@ Design parallelogram_array(std::size_t cells, std::size_t segments);
 
 /// An open P-hedron design with about `panels` panels (faces).
 Design open_design_with_panels(std::size_t panels);
+
+/// The default preset as it was before issue 13 made it buildable (70 panels,
+/// signs +-+-+): 10 bow-ties and a collision at t*; what `phedra repair` of a
+/// default-sized design is measured on.
+nlohmann::json unbuildable_default_preset();
+
+/// An unbuildable open design with `strips` strips (general_open_input with
+/// mixed signs and its heights made monotone, so that its '+' columns are
+/// bow-ties), as a preset.
+nlohmann::json unbuildable_open_preset(std::size_t strips);
 
 }  // namespace phedra::bench

@@ -32,9 +32,12 @@ struct RepairOptions {
   /// 3/4, 1/2, 1/4 and t* alone), reported as such.
   bool widest_fallback = true;
   double shape_target = 0.005;       ///< the shape margin every panel keeps (room to edit)
+  double edge_target = 0.005;        ///< while searching: the shortest panel edge, over the model size
   std::size_t motion_samples = 24;   ///< samples a side of the optimizer's motion margins
-  std::size_t restarts = 4;          ///< perturbed starts after the input
-  std::size_t max_evaluations = 3000;  ///< per local search
+  std::size_t restarts = 40;         ///< perturbed starts after the input (for the panel shapes)
+  std::size_t shape_candidates = 3;  ///< designs with simple panels to try the motion from
+  std::size_t max_evaluations = 3000;  ///< per local search of the panel shapes (cheap: no motion)
+  std::size_t motion_evaluations = 300;  ///< per search with the motion (each design sweeps it)
   double max_seconds = 60.0;         ///< in all
   unsigned seed = 1;
 };
@@ -63,6 +66,9 @@ struct RepairResult {
   std::vector<std::string> notes;  ///< what could not be varied
   /// When not found: how close it came and which constraint stayed violated.
   std::string closest;
+  /// When not found: the closest design (the fewest panels not simple, then the
+  /// widest buildable part), for inspection.
+  nlohmann::json closest_preset;
 };
 
 /// Repairs `preset` (a preset object). InvalidInputError for a preset that does

@@ -1,0 +1,242 @@
+// Repair (issue 14): random unbuildable designs (open of every sign pattern,
+// parallelogram tubes, arrays) repaired, every result verified buildable by
+// the buildability report itself (not by the optimizer's figures) and compared
+// with its input: only the varied fields changed, every tie kept.
+
+#include "phedra/buildability.h"
+#include "phedra/errors.h"
+#include "phedra/preset.h"
+#include "phedra/repair.h"
+#include "phedra/tube.h"
+#include "support/random_input.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <string>
+
+using namespace phedra;
+using json = nlohmann::json;
+
+namespace {
+
+const std::string presets = PHEDRA_PRESETS_DIR;
+
+json read_json(const std::string& path) {
+  std::ifstream in(path);
+  return json::parse(in);
+}
+
+/// Whether `pointer` (a JSON pointer of a number) lies in a varied group.
+bool may_change(const std::string& pointer, const std::vector<VariableGroup>& vary) {
+  for (VariableGroup g : vary) {
+    if (g == VariableGroup::apex_heights &&
+        (pointer.find("heights") != std::string::npos || pointer.find("free_height") != std::string::npos)) {
+      return true;
+    }
+    if (g == VariableGroup::directions && pointer.rfind("/directions/", 0) == 0) return true;
+    if (g == VariableGroup::trajectory && pointer.rfind("/trajectory/", 0) == 0) return true;
+  }
+  return false;
+}
+
+/// The pointers of every number that differs (and every other difference as "!").
+void differences(const json& a, const json& b, const std::string& at, std::vector<std::string>& out) {
+  if (a.is_number() && b.is_number()) {
+    if (a.get<double>() != b.get<double>()) out.push_back(at);
+  } else if (a.is_array() && b.is_array() && a.size() == b.size()) {
+    for (std::size_t k = 0; k < a.size(); ++k) differences(a[k], b[k], at + "/" + std::to_string(k), out);
+  } else if (a.is_object() && b.is_object() && a.size() == b.size()) {
+    for (const auto& [key, value] : a.items()) {
+      if (!b.contains(key)) {
+        out.push_back("!" + at + "/" + key);
+      } else {
+        differences(value, b[key], at + "/" + key, out);
+      }
+    }
+  } else if (a != b) {
+    out.push_back("!" + at);
+  }
+}
+
+/// An unbuildable design: open P-hedra of every sign pattern, parallelogram
+/// tubes, and the shipped arrays with their heights disturbed.
+std::optional<json> random_unbuildable(std::mt19937_64& rng, int k) {
+  const int kind = k % 5;  // 0-2 open, 3 parallelogram tube, 4 array
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  if (kind == 4) {
+    static const char* arrays[] = {"grid-3x3", "row-of-cells", "edge-sharing-pair", "merged-tube"};
+    json p = read_json(presets + "/" + arrays[(k / 5) % 4] + ".json");
+    auto disturb = [&](json& list) {
+      for (json& h : list) h = h.get<double>() + 0.6 * unit(rng);
+    };
+    if (p.contains("tube")) disturb(p["tube"]["apex_heights"]);
+    if (p.contains("grid")) {
+      disturb(p["grid"]["u_heights"]);
+      disturb(p["grid"]["w_heights"]);
+    }
+    if (p.contains("row")) disturb(p["row"]["free_heights"]);
+    if (p.contains("couplings")) {
+      for (json& c : p["couplings"]) {
+        if (c.contains("free_heights")) disturb(c["free_heights"]);
+        if (c.contains("free_height")) c["free_height"] = c["free_height"].get<double>() + 0.6 * unit(rng);
+      }
+    }
+    return p;
+  }
+  test::RandomInputShape shape;
+  shape.strips = 4 + k % 6;
+  shape.profile_vertices = kind <= 2 ? 4 + k % 3 : 5;
+  shape.smooth = true;
+  shape.random_placement = k % 3 == 0;
+  int redrawn = 0;
+  std::uniform_real_distribution<double> height(-3.0, 3.0);
+  const std::optional<PHedron> p = test::draw_phedron(
+      [&] {
+        ControlPolylines input = test::random_input(rng, shape);
+        if (kind == 3) {
+          TubeHeights z;
+          do {
+            z = {height(rng), height(rng), height(rng), height(rng)};
+          } while (std::abs(z[0] - z[1]) < 0.3 || std::abs(z[1] - z[2]) < 0.3 || std::abs(z[2] - z[3]) < 0.3 ||
+                   std::abs(z[3] - z[0]) < 0.3);
+          set_tube_profile(input, TubeType::parallelogram, z);
+        }
+        return input;
+      },
+      redrawn);
+  if (!p) return std::nullopt;
+  return preset_to_json(p->input());
+}
+
+/// A buildable shipped preset with its heights and directions disturbed, as a
+/// user's edit may leave it (heights by up to `reach` of the model size,
+/// directions turned by up to 10 degrees about the axis).
+json disturbed_preset(std::mt19937_64& rng, int k) {
+  static const char* names[] = {"default", "all-plus", "all-minus", "tilted-axis", "helix-tube", "parallelogram-tube",
+                                "grid-3x3", "row-of-cells", "edge-sharing-pair", "merged-tube"};
+  json p = read_json(presets + "/" + names[k % 10] + ".json");
+  const double size = design_from_json(p).assembly.model_size();
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double reach = 0.02 + 0.08 * std::abs(unit(rng));
+  auto disturb = [&](json& value) { value = value.get<double>() + reach * size * unit(rng); };
+  std::function<void(json&, const std::string&)> walk = [&](json& node, const std::string& key) {
+    if (node.is_number() && (key.find("heights") != std::string::npos || key == "free_height")) {
+      disturb(node);
+    } else if (node.is_array() || node.is_object()) {
+      for (auto it = node.begin(); it != node.end(); ++it) walk(*it, node.is_object() ? it.key() : key);
+    }
+  };
+  walk(p, "");
+  if (!p.contains("axis") && p.contains("directions") && p["directions"].is_array()) {
+    for (json& d : p["directions"]) {
+      const double turn = 10.0 * std::numbers::pi / 180.0 * unit(rng);  // about z, the axis
+      const double x = d[0].get<double>(), y = d[1].get<double>();
+      d = json::array({std::cos(turn) * x - std::sin(turn) * y, std::sin(turn) * x + std::cos(turn) * y, d[2]});
+    }
+  }
+  return p;
+}
+
+std::size_t env_count(const char* name, std::size_t fallback) {
+  const char* v = std::getenv(name);
+  return v ? static_cast<std::size_t>(std::atoi(v)) : fallback;
+}
+
+/// What a batch of repairs achieved.
+struct Tally {
+  std::size_t tried = 0, repaired = 0, whole = 0, shapes_failed = 0, motion_failed = 0;
+  double seconds = 0.0, worst = 0.0;
+};
+
+/// Repairs `wanted` unbuildable designs from `draw` (within the test's time
+/// budget a design), verifies every result by the buildability report at the
+/// default sweep (not the repair's own figures) and compares it with its input.
+Tally repair_batch(const std::function<std::optional<json>(int)>& draw, std::size_t wanted) {
+  // Bounded by evaluations, not by time: the same results on any machine.
+  RepairOptions options;
+  options.max_seconds = 1e9;
+  options.restarts = env_count("PHEDRA_REPAIR_RESTARTS", 10);
+  options.motion_evaluations = env_count("PHEDRA_REPAIR_MOTION_EVALUATIONS", 150);
+  Tally tally;
+  for (int k = 0; tally.tried < wanted && k < 20 * static_cast<int>(wanted); ++k) {
+    const std::optional<json> preset = draw(k);
+    if (!preset) continue;
+    RepairResult r;
+    try {
+      r = repair(*preset, options);
+    } catch (const InvalidInputError&) {
+      continue;  // a disturbed design that no longer builds at all
+    }
+    if (r.already_buildable) continue;
+    ++tally.tried;
+    tally.seconds += r.seconds;
+    tally.worst = std::max(tally.worst, r.seconds);
+    CAPTURE(k, preset->dump());
+    CHECK_FALSE(r.before.buildable());
+    if (!r.found) {
+      CHECK_FALSE(r.closest.empty());
+      (r.after.panels_simple() ? tally.motion_failed : tally.shapes_failed) += 1;
+      if (const char* dump = std::getenv("PHEDRA_REPAIR_DUMP")) {
+        std::ofstream(std::string(dump) + "/failed-" + std::to_string(k) + ".json") << preset->dump(2);
+      }
+      continue;
+    }
+    ++tally.repaired;
+    tally.whole += r.fraction >= 1.0 - 1e-12 ? 1 : 0;
+    const Design d = design_from_json(r.preset);
+    const BuildabilityReport check = assess_buildability(d);
+    CHECK(check.panels_simple());
+    REQUIRE(check.interval());
+    const double t = check.t_star;
+    const double below = (t - check.t_lambda) * r.fraction, above = (check.t_mu - t) * r.fraction;
+    CHECK(check.buildable_over(t - below * (1.0 - 1e-9), t + above * (1.0 - 1e-9)));
+    // Only the varied fields changed, and the result is the same kind of design.
+    std::vector<std::string> changed;
+    differences(*preset, r.preset, "", changed);
+    for (const std::string& pointer : changed) {
+      CAPTURE(pointer);
+      CHECK(may_change(pointer, options.vary));
+    }
+    CHECK(d.assembly.member_count() == design_from_json(*preset).assembly.member_count());
+    CHECK(r.changes.size() <= changed.size());
+    CHECK(r.distance > 0.0);
+  }
+  WARN("repaired " << tally.repaired << " of " << tally.tried << " (" << tally.whole
+                   << " over the whole interval, the others over the widest part around t*); not repaired: "
+                   << tally.shapes_failed << " with panels not simple, " << tally.motion_failed << " colliding; mean "
+                   << tally.seconds / std::max<std::size_t>(tally.tried, 1) << " s, worst " << tally.worst << " s");
+  CHECK(tally.tried >= wanted);
+  return tally;
+}
+
+#ifdef PHEDRA_SANITIZE_BUILD
+constexpr std::size_t designs_a_batch = 6;
+#else
+constexpr std::size_t designs_a_batch = 100;
+#endif
+
+}  // namespace
+
+TEST_CASE("repair: disturbed shipped presets (a user's edit gone wrong) become buildable, verified, only the varied "
+          "fields change",
+          "[repair]") {
+  std::mt19937_64 rng(20261202);
+  const Tally t = repair_batch([&](int k) { return std::optional<json>(disturbed_preset(rng, k)); },
+                               env_count("PHEDRA_REPAIR_DESIGNS", designs_a_batch));
+  CHECK(t.repaired * 10 >= t.tried * 7);
+}
+
+TEST_CASE("repair: random unbuildable designs (open of every sign pattern, parallelogram tubes, arrays), verified, "
+          "only the varied fields change",
+          "[repair]") {
+  std::mt19937_64 rng(20261203);
+  const Tally t = repair_batch([&](int k) { return random_unbuildable(rng, k); },
+                               env_count("PHEDRA_REPAIR_DESIGNS", designs_a_batch));
+  CHECK(t.repaired * 5 >= t.tried);
+}
