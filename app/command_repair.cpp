@@ -27,9 +27,8 @@ struct RepairCommandOptions {
 std::string percent(double fraction) { return format_short(100.0 * fraction) + " %"; }
 
 /// `preset` written with the keys in the order the input file has them (a
-/// reference case's preset object when the file is one), renamed and described.
-std::string preset_text(const nlohmann::json& preset, const std::string& input_path, const std::string& name,
-                        const std::string& description) {
+/// reference case's preset object when the file is one).
+std::string preset_text(const nlohmann::json& preset, const std::string& input_path) {
   nlohmann::ordered_json document = nlohmann::ordered_json::parse(read_text_file(input_path));
   if (document.is_object() && document.contains("preset") && !document.contains("trajectory")) {
     document = nlohmann::ordered_json(document["preset"]);
@@ -43,8 +42,6 @@ std::string preset_text(const nlohmann::json& preset, const std::string& input_p
   for (const auto& [key, value] : preset.items()) {
     if (!out.contains(key)) out[key] = nlohmann::ordered_json::parse(value.dump());
   }
-  out["name"] = name;
-  out["description"] = description;
   return out.dump(2) + "\n";
 }
 
@@ -109,16 +106,10 @@ void add_repair_command(CLI::App& app, Context& context) {
     const RepairResult r = repair(loaded.preset, o->repair);
     const std::string name = loaded.preset.value("name", std::string("unnamed"));
     if (r.found && !r.already_buildable) {
-      emit(preset_text(r.preset, o->preset, name + "-repaired",
-                       "Repaired by phedra repair from \"" + name + "\" (varied: " + o->vary + "): " +
-                           r.after.summary() + "."),
-           o->output, o->preset, context.out);
+      emit(preset_text(named_result(r.preset, name, o->vary, r), o->preset), o->output, o->preset, context.out);
     }
     if (!r.found && !o->closest.empty() && r.closest_preset.is_object()) {
-      emit(preset_text(r.closest_preset, o->preset, name + "-closest",
-                       "The closest design phedra repair found to a buildable one from \"" + name +
-                           "\" (varied: " + o->vary + "); not buildable: " + r.after.summary() + "."),
-           o->closest, o->preset, context.out);
+      emit(preset_text(named_result(r.closest_preset, name, o->vary, r), o->preset), o->closest, o->preset, context.out);
     }
     if (o->json) {
       context.out << result_json(r).dump(2) << '\n';

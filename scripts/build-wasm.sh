@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds the phedra core for the browser with Debian's emscripten (issue 8):
+# Builds the phedra core for the browser with Debian's emscripten (issue 8; repair, issue 14):
 # web/wasm/phedra.mjs + phedra.wasm (an ES module whose default export is the factory `createPhedra`, see
-# wasm/bindings.cpp). Only Eigen, nlohmann-json and tinygltf's header are needed
-# besides the project's own sources. Incremental: an object is rebuilt when its source or a
+# wasm/bindings.cpp). Only Eigen, nlohmann-json, tinygltf's header and NLopt
+# (compiled from Debian's source package by scripts/build-nlopt-wasm.sh) are
+# needed besides the project's own sources. Incremental: an object is rebuilt when its source or a
 # header changed (em++ -MMD dependency files in build-wasm/).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,9 +15,10 @@ mkdir -p "$out/include" "$out/obj" web/wasm
 ln -sfn /usr/include/eigen3/Eigen "$out/include/Eigen"
 ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
 ln -sfn /usr/include/tiny_gltf.h "$out/include/tiny_gltf.h"
+bash scripts/build-nlopt-wasm.sh  # NLopt for repair, from Debian's source package (once)
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
-       -Ianalysis/include -Iexporters/include -I"$out/include")
-sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp
+       -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
+sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp repair/src/*.cpp
          exporters/src/fold_export.cpp exporters/src/gltf_export.cpp exporters/src/keyframes.cpp
          exporters/src/panel_tree.cpp wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
@@ -41,6 +43,6 @@ for src in "${sources[@]}"; do
   fi
 done
 for pid in "${pids[@]}"; do wait "$pid"; done
-em++ "${objects[@]}" -O3 -fwasm-exceptions --bind -sMODULARIZE=1 -sEXPORT_NAME=createPhedra -sALLOW_MEMORY_GROWTH=1 \
+em++ "${objects[@]}" "$out/nlopt/lib/libnlopt.a" -O3 -fwasm-exceptions --bind -sMODULARIZE=1 -sEXPORT_NAME=createPhedra -sALLOW_MEMORY_GROWTH=1 \
   -sENVIRONMENT=web,node -sEXPORT_ES6=1 -o web/wasm/phedra.mjs
 echo "build-wasm: web/wasm/phedra.mjs, web/wasm/phedra.wasm ($(stat -c %s web/wasm/phedra.wasm) bytes)"

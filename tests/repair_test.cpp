@@ -162,7 +162,8 @@ Tally repair_batch(const std::function<std::optional<json>(int)>& draw, std::siz
   RepairOptions options;
   options.max_seconds = 1e9;
   options.restarts = env_count("PHEDRA_REPAIR_RESTARTS", 10);
-  options.motion_evaluations = env_count("PHEDRA_REPAIR_MOTION_EVALUATIONS", 150);
+  options.motion_evaluations = env_count("PHEDRA_REPAIR_MOTION_EVALUATIONS", 100);
+  options.shape_candidates = 2;
   Tally tally;
   for (int k = 0; tally.tried < wanted && k < 20 * static_cast<int>(wanted); ++k) {
     const std::optional<json> preset = draw(k);

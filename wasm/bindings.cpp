@@ -12,6 +12,7 @@
 #include "phedra/fold_export.h"
 #include "phedra/gltf_export.h"
 #include "phedra/preset.h"
+#include "phedra/repair.h"
 #include "phedra/self_intersection.h"
 
 #include <nlohmann/json.hpp>
@@ -302,6 +303,60 @@ class Designer {
     return val(emscripten::typed_memory_view(glb_.size(), reinterpret_cast<const std::uint8_t*>(glb_.data())));
   }
 
+  /// The nearest buildable design, as `phedra repair` finds it. `options_text`:
+  /// JSON {vary: "apex_heights,directions", require: 1, max_seconds: 10}, each
+  /// optional. Returns {ok: true, found, already_buildable, fraction, distance,
+  /// before, after (summaries), changes: [{field, before, after, change,
+  /// relative}], preset (its text, named "NAME-repaired", when found), closest
+  /// (how close it came, when not), evaluations, starts, seconds}, or {ok:
+  /// false, field, message}. The shown design does not change (the page loads
+  /// the result, keeping the previous one for its undo).
+  val repair(const std::string& options_text) const {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
+      RepairOptions options;
+      const std::string vary = o.value("vary", std::string("apex_heights,directions"));
+      options.vary = parse_variable_groups(vary);
+      options.required_fraction = o.value("require", 1.0);
+      options.max_seconds = o.value("max_seconds", 10.0);
+      const RepairResult r = phedra::repair(document_, options);
+      val v = val::object();
+      v.set("ok", true);
+      v.set("found", r.found);
+      v.set("already_buildable", r.already_buildable);
+      v.set("fraction", r.fraction);
+      v.set("distance", r.distance);
+      v.set("before", r.before.summary());
+      v.set("after", r.after.summary());
+      val changes = val::array();
+      for (const FieldChange& c : r.changes) {
+        val change = val::object();
+        change.set("field", c.field);
+        change.set("before", c.before.dump());
+        change.set("after", c.after.dump());
+        change.set("change", c.change);
+        change.set("relative", c.relative);
+        changes.call<void>("push", change);
+      }
+      v.set("changes", changes);
+      if (r.found && !r.already_buildable) {
+        v.set("preset", named_result(r.preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
+      }
+      v.set("closest", r.closest);
+      v.set("evaluations", static_cast<double>(r.evaluations));
+      v.set("starts", static_cast<double>(r.starts));
+      v.set("seconds", r.seconds);
+      return v;
+    } catch (const InvalidInputError& e) {
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      return failure("", e.what());
+    } catch (const nlohmann::json::exception& e) {
+      return failure("options", e.what());
+    }
+  }
+
   /// FOLD text with `count` frames over the flexion interval (as `phedra generate -o X.fold --count N`).
   std::string fold(int count) const {
     if (!design_) return "";
@@ -348,5 +403,6 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("collisions", &Designer::collisions)
       .function("invalidPanels", &Designer::invalidPanels)
       .function("glb", &Designer::glb)
-      .function("fold", &Designer::fold);
+      .function("fold", &Designer::fold)
+      .function("repair", &Designer::repair);
 }

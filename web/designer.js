@@ -554,6 +554,61 @@ function scheduleFigures() {
   }, 150);
 }
 
+// --- repair (issue 14) ---------------------------------------------------------
+// The nearest buildable design, found by the same core as `phedra repair`
+// (NLopt compiled to WebAssembly). The search runs on this thread: the status
+// says so first. Its result replaces the design; Undo brings the previous back.
+const undoStack = [];
+const repairSeconds = 10;
+
+function showRepair(text, changes = []) {
+  const result = $('repair-result'), list = $('repair-list');
+  result.hidden = !text;
+  result.textContent = text;
+  list.textContent = '';
+  $('repair-changes').hidden = changes.length === 0;
+  for (const c of changes) {
+    const item = document.createElement('li');
+    const what = c.field.startsWith('directions') ? `turned ${format(c.change)} degrees`
+      : `${c.change >= 0 ? '+' : ''}${format(c.change)}, ${format(c.relative)} of the model size`;
+    item.textContent = `${c.field}: ${c.before} → ${c.after} (${what})`;
+    list.append(item);
+  }
+  $('undo').disabled = undoStack.length === 0;
+}
+
+function repairDesign() {
+  $('repair').disabled = true;
+  showRepair(`repairing: searching the nearest buildable design (up to ${repairSeconds} s)…`);
+  // Two frames, so that the status is on screen before the search holds the thread.
+  requestAnimationFrame(() => requestAnimationFrame(() => {
+    const r = designer.repair(JSON.stringify({ max_seconds: repairSeconds }));
+    $('repair').disabled = false;
+    if (!r.ok) {
+      showRepair(`repair refused: ${r.field ? `${r.field}: ` : ''}${r.message}`);
+    } else if (r.already_buildable) {
+      showRepair('already buildable over the whole flexion interval: nothing to repair');
+    } else if (!r.found) {
+      showRepair(`no buildable design found in ${format(r.seconds)} s: ${r.closest}`);
+    } else {
+      const previous = clone(preset);
+      if (apply(JSON.parse(r.preset))) {
+        undoStack.push(previous);
+        const part = r.fraction >= 1 ? '' : ` (over ${Math.round(100 * r.fraction)} % of the way from t* to the limits: the widest part found)`;
+        showRepair(`repaired${part}: ${r.changes.length} field${r.changes.length === 1 ? '' : 's'} changed, distance ` +
+          `${format(r.distance)} of the model size, ${r.evaluations} designs in ${format(r.seconds)} s. Undo brings the previous design back.`, r.changes);
+      }
+    }
+  }));
+}
+
+$('repair').addEventListener('click', repairDesign);
+$('undo').addEventListener('click', () => {
+  const previous = undoStack.pop();
+  if (previous && apply(previous)) showRepair('repair undone: the previous design is back');
+  $('undo').disabled = undoStack.length === 0;
+});
+
 // --- dragging ----------------------------------------------------------------
 const raycaster = new THREE.Raycaster();
 let drag = null;

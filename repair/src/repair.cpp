@@ -348,6 +348,20 @@ std::vector<FieldChange> changes_between(const json& before, const json& after, 
 
 }  // namespace
 
+json named_result(const json& result, const std::string& input_name, const std::string& vary, const RepairResult& r) {
+  json out = result;
+  if (r.found) {
+    out["name"] = input_name + "-repaired";
+    out["description"] = "Repaired by phedra repair from \"" + input_name + "\" (varied: " + vary + "): " +
+                         r.after.summary() + ".";
+  } else {
+    out["name"] = input_name + "-closest";
+    out["description"] = "The closest design phedra repair found to a buildable one from \"" + input_name +
+                         "\" (varied: " + vary + "); not buildable: " + r.after.summary() + ".";
+  }
+  return out;
+}
+
 double buildable_fraction(const BuildabilityReport& r) {
   const auto range = r.interval();
   if (!range || !r.swept) return 0.0;
@@ -497,6 +511,30 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     }
   }
   if (!best && options.widest_fallback && best_partial && best_partial->fraction > 0.0) best = best_partial;
+  if (best) {
+    // Changes below 0.1 % of the model size (or 0.06 degrees) are the search's
+    // noise: put them back when the design stays as buildable without them.
+    std::vector<double> tidy = best->x;
+    bool any = false;
+    for (std::size_t k = 0; k < tidy.size(); ++k) {
+      const DesignVariable& v = variables.variables()[k];
+      if (tidy[k] != v.start && std::abs(tidy[k] - v.start) < 1e-3 * v.scale) {
+        tidy[k] = v.start;
+        any = true;
+      }
+    }
+    if (any) {
+      try {
+        const BuildabilityReport report = verify(variables.preset_at(tidy));
+        if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12) {
+          best->x = tidy;
+          best->distance = variables.distance(tidy);
+          best->report = report;
+        }
+      } catch (const Error&) {
+      }
+    }
+  }
   if (best) {
     r.found = true;
     r.fraction = buildable_fraction(best->report);

@@ -2,8 +2,8 @@
 // driven by playwright-core): open a preset, drag a handle and see the mesh
 // change, break an assumption and see the CLI's message next to its handle,
 // move the slider, save the preset and compare with `phedra sample`, export
-// .glb and FOLD, run drag steps of a 10^4-vertex model (bench/designer.mjs
-// times them for docs/performance.md).
+// .glb and FOLD, repair a design with bow-ties and undo it, run drag steps of a
+// 10^4-vertex model (bench/designer.mjs times them for docs/performance.md).
 // usage: node tests/js/designer_test.mjs PHEDRA_BINARY PRESET SCREENSHOT.png
 import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -103,6 +103,41 @@ try {
     await api((t) => window.phedraDesigner.setT(t), 0.5 * (b.interval[0] + b.interval[1]));
     await page.waitForTimeout(400);
     check((await api(() => window.phedraDesigner.collidingPanels())).length === 0, 'orange panels inside the buildable part');
+  }
+  {
+    // Repair (issue 14): the button finds a buildable design near a tube with
+    // bow-ties (the same core as `phedra repair`), `phedra check` passes it, and
+    // Undo brings the bow-ties back.
+    const file = path.join(data, 'repairable-tube.json');
+    const before = await loadFile(file);
+    check(!before.buildable && (await api(() => window.phedraDesigner.invalidPanels())).length === 4, 'the repairable tube has 4 bow-ties');
+    check(await page.$eval('#undo', (e) => e.disabled), 'Undo enabled before any repair');
+    await page.click('#repair');
+    await page.waitForFunction(() => /^(repaired|no buildable|repair refused)/.test(document.getElementById('repair-result').textContent),
+      null, { timeout: 60000 });
+    const result = await page.$eval('#repair-result', (e) => e.textContent);
+    check(result.startsWith('repaired: '), `repair result: "${result}"`);
+    const after = await settled();
+    check(after.buildable && (await status()).startsWith('buildable over the whole flexion interval'), `after repair: "${await status()}"`);
+    check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'red panels after the repair');
+    const repaired = await api(() => window.phedraDesigner.preset());
+    check(repaired.name === 'repairable-tube-repaired', `repaired preset name ${repaired.name}`);
+    const changes = await page.$$eval('#repair-list li', (items) => items.map((i) => i.textContent));
+    check(changes.length >= 1 && changes.every((c) => /^(tube\.apex_heights|directions)\[/.test(c)), `changes listed: ${changes}`);
+    const saved = path.join(scratch, 'repaired.json');
+    writeFileSync(saved, JSON.stringify(repaired));
+    let cliPass = true;
+    try { execFileSync(phedra, ['check', saved, '--samples', '20'], { encoding: 'utf8' }); } catch { cliPass = false; }
+    check(cliPass, 'phedra check fails the design the Repair button made');
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-repaired.png') });
+    check(!(await page.$eval('#undo', (e) => e.disabled)), 'Undo disabled after a repair');
+    await page.click('#undo');
+    await settled();
+    const undone = await api(() => window.phedraDesigner.preset());
+    const original = JSON.parse(readFileSync(file, 'utf8'));
+    check(JSON.stringify(undone.tube.apex_heights) === JSON.stringify(original.tube.apex_heights), `Undo gives ${JSON.stringify(undone.tube)}`);
+    check((await api(() => window.phedraDesigner.invalidPanels())).length === 4, 'the bow-ties are back after Undo');
+    check((await page.$eval('#repair-result', (e) => e.textContent)).startsWith('repair undone'), 'the undo is reported');
   }
   check(await api((p) => window.phedraDesigner.apply(p), JSON.parse(readFileSync(preset, 'utf8'))), 'the default preset again');
   await settled();

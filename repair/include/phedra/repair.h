@@ -75,6 +75,12 @@ struct RepairResult {
 /// not build and for bad options.
 RepairResult repair(const nlohmann::json& preset, const RepairOptions& options = {});
 
+/// `result` (a repaired or closest preset) named after the input: "NAME-repaired"
+/// (or "NAME-closest" when `found` is false) with a description saying what was
+/// varied (`vary`, as given) and its buildability.
+nlohmann::json named_result(const nlohmann::json& result, const std::string& input_name, const std::string& vary,
+                            const RepairResult& r);
+
 /// The buildable part of a report as a fraction of the way from t* to each
 /// limit (the smaller side): 1 for the whole interval, 0 for t* alone or none.
 double buildable_fraction(const BuildabilityReport& report);
