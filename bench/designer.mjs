@@ -8,6 +8,9 @@
 //   frame  the same at the resolution a drag uses (`ratio` of the full one: lower
 //          only when the full draw does not fit in a 60 Hz frame)
 //   load   an edit through the preset's text instead (sign toggles, the JSON editor)
+//   keep   a keep-buildable drag step (Designer.keep: the check at t* of simple
+//          panels and no collision), and steps of a height dragged where panels
+//          would cross (the other heights projected, or the handle stopped)
 // and then drags trajectory point 1 with the mouse for 120 moves, recording every
 // animation frame: how long its work took (edit, render), the interval to the next
 // frame, and how many frames a 60 Hz display would have missed.
@@ -105,11 +108,14 @@ if (args.includes('--json')) {
 } else {
   const ms = (f) => `${f.median.toFixed(2)} (${f.worst.toFixed(2)})`;
   console.log(`drag steps of trajectory point 1, ${runs} runs, milliseconds: median (worst); 60 Hz frame = 16.7 ms`);
-  console.log(['renderer', 'vertices', 'core', 'step', 'full', 'ratio', 'frame', 'load'].map((h) => h.padStart(15)).join(''));
+  console.log(['renderer', 'vertices', 'panels', 'core', 'step', 'full', 'ratio', 'frame', 'load', 'keep', 'keep, crossing'].map((h) => h.padStart(15)).join(''));
   for (const r of results) {
-    console.log([r.renderer, String(r.vertices), ms(r.core), ms(r.step), ms(r.full), r.ratio.toFixed(2), ms(r.frame), ms(r.load)]
+    console.log([r.renderer, String(r.vertices), String(r.panels), ms(r.core), ms(r.step), ms(r.full), r.ratio.toFixed(2), ms(r.frame), ms(r.load), ms(r.keep), ms(r.keepProjection)]
       .map((c) => c.padStart(15)).join(''));
   }
+  console.log('keep: a keep-buildable drag step of trajectory point 1 (the check at t*: simple panels, no collision);');
+  console.log('keep, crossing: steps of apex height 1 dragged where panels would cross: the other heights projected');
+  console.log(`(${results.map((r) => r.projected).join(', ')} steps) or the handle stopped at the wall (${results.map((r) => r.clamped).join(', ')} steps)`);
   console.log(`canvas ${results[0]?.canvas.join(' x ')} pixels, headless Chromium; WebGL on:`);
   for (const name of chosen) console.log(`  ${name}: ${results.find((r) => r.renderer === name)?.gl}`);
   console.log('\nmouse drags of trajectory point 1 (120 moves): frames drawn, those that applied an edit, their main-thread');

@@ -60,13 +60,7 @@ class Designer {
   /// Refused: the previous design and preset stay.
   val set(const std::string& key, int index, double x, double y, double z) {
     if (!design_) return failure("", "no design loaded");
-    nlohmann::json* target = at_path(key);
-    nlohmann::json* entry = nullptr;
-    if (target && target->is_array() && index >= 0 && static_cast<std::size_t>(index) < target->size()) {
-      entry = &(*target)[static_cast<std::size_t>(index)];
-    } else if (target && target->is_number() && index == -1) {
-      entry = target;
-    }
+    nlohmann::json* entry = entry_at(key, index);
     if (!entry) return failure(key, "no such entry " + std::to_string(index));
     const nlohmann::json previous = *entry;
     *entry = entry->is_array() ? nlohmann::json::array({x, y, z}) : nlohmann::json(x);
@@ -81,7 +75,88 @@ class Designer {
     }
   }
 
+  /// A keep-buildable drag step (issue 14): as set, then the rest of the design
+  /// (its apex heights) projected onto the designs whose panels are all simple
+  /// and whose t* is free of collisions, the held entry staying where the pointer
+  /// put it, within `budget_ms`. When no such design is found in time, the held
+  /// entry moves towards the pointer only as far as the design stays buildable
+  /// at t* (bisection), like a handle against a wall. The motion over the whole
+  /// interval is for the page to check when the hand stops. {ok: true,
+  /// projected, clamped, evaluations} or {ok: false, field, message} (a refused
+  /// value: the previous design stays).
+  val keep(const std::string& key, int index, double x, double y, double z, double budget_ms) {
+    if (!design_) return failure("", "no design loaded");
+    nlohmann::json* entry = entry_at(key, index);
+    if (!entry) return failure(key, "no such entry " + std::to_string(index));
+    const nlohmann::json previous = *entry;
+    const nlohmann::json wanted = entry->is_array() ? nlohmann::json::array({x, y, z}) : nlohmann::json(x);
+    std::string pointer = "/" + key;
+    for (char& c : pointer) c = c == '.' ? '/' : c;
+    if (index >= 0) pointer += "/" + std::to_string(index);
+    try {
+      *entry = wanted;
+      ProjectionOptions options;
+      options.fixed = {pointer};
+      options.max_seconds = budget_ms / 1000.0;
+      std::optional<Projection> p = project_buildable(document_, options);
+      bool clamped = false;
+      std::size_t evaluations = p ? p->evaluations : 0;
+      if (!p) {
+        // Against the wall: the furthest buildable point towards the pointer.
+        double good = 0.0, bad = 1.0;
+        for (int step = 0; step < 6; ++step) {
+          const double middle = 0.5 * (good + bad);
+          *entry = between(previous, wanted, middle);
+          bool ok = false;
+          try {
+            ok = buildable_at_t_star(design_from_json(document_));
+          } catch (const InvalidInputError&) {
+          }
+          ++evaluations;
+          (ok ? good : bad) = middle;
+        }
+        *entry = between(previous, wanted, good);
+        clamped = true;
+      }
+      if (p) document_ = p->preset;
+      build(document_);
+      val v = val::object();
+      v.set("ok", true);
+      v.set("projected", p ? p->moved : false);
+      v.set("clamped", clamped);
+      v.set("evaluations", static_cast<double>(evaluations));
+      return v;
+    } catch (const InvalidInputError& e) {
+      *entry_at(key, index) = previous;
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      *entry_at(key, index) = previous;
+      return failure("", e.what());
+    }
+  }
+
+  /// The preset of the shown design (JSON text): what a keep-buildable drag made of it.
+  std::string presetText() const { return document_.dump(); }
+
  private:
+  /// Entry `index` of the list at `key` (see set), or with index -1 the number there; null if none.
+  nlohmann::json* entry_at(const std::string& key, int index) {
+    nlohmann::json* target = at_path(key);
+    if (target && target->is_array() && index >= 0 && static_cast<std::size_t>(index) < target->size()) {
+      return &(*target)[static_cast<std::size_t>(index)];
+    }
+    if (target && target->is_number() && index == -1) return target;
+    return nullptr;
+  }
+
+  /// a + s (b - a) for numbers or equal-length arrays of numbers.
+  static nlohmann::json between(const nlohmann::json& a, const nlohmann::json& b, double s) {
+    if (a.is_number()) return a.get<double>() + s * (b.get<double>() - a.get<double>());
+    nlohmann::json out = nlohmann::json::array();
+    for (std::size_t k = 0; k < a.size(); ++k) out.push_back(a[k].get<double>() + s * (b[k].get<double>() - a[k].get<double>()));
+    return out;
+  }
+
   /// The value at a dotted path of the preset (see set), or null.
   nlohmann::json* at_path(const std::string& key) {
     nlohmann::json* node = &document_;
@@ -304,8 +379,8 @@ class Designer {
   }
 
   /// The nearest buildable design, as `phedra repair` finds it. `options_text`:
-  /// JSON {vary: "apex_heights,directions", require: 1, max_seconds: 10}, each
-  /// optional. Returns {ok: true, found, already_buildable, fraction, distance,
+  /// JSON {vary: "apex_heights,directions", require: 1, max_seconds: 10, fixed:
+  /// ["/trajectory/3"] (fields that stay)}, each optional. Returns {ok: true, found, already_buildable, fraction, distance,
   /// before, after (summaries), changes: [{field, before, after, change,
   /// relative}], preset (its text, named "NAME-repaired", when found), closest
   /// (how close it came, when not), evaluations, starts, seconds}, or {ok:
@@ -320,6 +395,7 @@ class Designer {
       options.vary = parse_variable_groups(vary);
       options.required_fraction = o.value("require", 1.0);
       options.max_seconds = o.value("max_seconds", 10.0);
+      options.fixed = o.value("fixed", std::vector<std::string>{});
       const RepairResult r = phedra::repair(document_, options);
       val v = val::object();
       v.set("ok", true);
@@ -393,6 +469,8 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .constructor<>()
       .function("load", &Designer::load)
       .function("set", &Designer::set)
+      .function("keep", &Designer::keep)
+      .function("presetText", &Designer::presetText)
       .function("loaded", &Designer::loaded)
       .function("info", &Designer::info)
       .function("faces", &Designer::faces)

@@ -544,6 +544,12 @@ function scheduleFigures() {
     // larger models (the summary says when it was coarser than 200).
     buildability = designer.buildability(true, info.faces <= 2000 ? 0 : Math.max(8, Math.round(200000 / info.faces)), 8);
     if (buildability.ok === false) buildability = null;
+    if (keepHeld && buildability && !buildability.buildable && keepBuildable()) {
+      const fixed = [keepHeld];
+      keepHeld = null;
+      repairDesign({ fixed });  // the motion too, the held handle where the hand left it
+    }
+    keepHeld = null;
     showBuildability();
     showMessage();
     scheduleCollisions();
@@ -577,12 +583,13 @@ function showRepair(text, changes = []) {
   $('undo').disabled = undoStack.length === 0;
 }
 
-function repairDesign() {
+/// `fixed`: preset fields (JSON pointers) that stay, e.g. the handle a keep-buildable drag held.
+function repairDesign({ fixed = [] } = {}) {
   $('repair').disabled = true;
   showRepair(`repairing: searching the nearest buildable design (up to ${repairSeconds} s)…`);
   // Two frames, so that the status is on screen before the search holds the thread.
   requestAnimationFrame(() => requestAnimationFrame(() => {
-    const r = designer.repair(JSON.stringify({ max_seconds: repairSeconds }));
+    const r = designer.repair(JSON.stringify({ max_seconds: repairSeconds, fixed }));
     $('repair').disabled = false;
     if (!r.ok) {
       showRepair(`repair refused: ${r.field ? `${r.field}: ` : ''}${r.message}`);
@@ -602,7 +609,7 @@ function repairDesign() {
   }));
 }
 
-$('repair').addEventListener('click', repairDesign);
+$('repair').addEventListener('click', () => repairDesign());
 $('undo').addEventListener('click', () => {
   const previous = undoStack.pop();
   if (previous && apply(previous)) showRepair('repair undone: the previous design is back');
@@ -667,17 +674,35 @@ function edited(handle, point) {
   return { key: handle.key, index: handle.index, value: [point.dot(a), 0, 0] };
 }
 
+// Keep buildable (issue 14): each drag step projects the rest of the design
+// (the apex heights) onto the designs whose panels are simple and whose t* is
+// free of collisions, within this budget of the frame; the handle stops where
+// that is impossible. When the hand stops, the motion over the whole interval
+// is repaired too (the held field fixed), undoably.
+const keepBudget = 10;  // ms
+let keepHeld = null;    // the JSON pointer of the field the last keep-buildable drag held
+let lastKeep = null;    // designer.keep's answer to the last step
+const keepBuildable = () => $('keep').checked;
+const pointerOf = (edit) => `/${edit.key.replaceAll('.', '/')}${edit.index >= 0 ? `/${edit.index}` : ''}`;
+
 /// Applies one edit through the core without the round trip through JSON text
 /// (the hot path while dragging); the topology does not change.
 function applyEdit(edit) {
-  const result = designer.set(edit.key, edit.index, ...edit.value);
+  const keep = keepBuildable();
+  const result = keep ? designer.keep(edit.key, edit.index, ...edit.value, keepBudget) : designer.set(edit.key, edit.index, ...edit.value);
   if (!result.ok) {
     failure = { field: result.field, message: result.message };
     showMessage();
     return false;
   }
   failure = null;
-  setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
+  if (keep) {
+    keepHeld = pointerOf(edit);
+    lastKeep = result;
+    preset = JSON.parse(designer.presetText());  // projected or stopped at the wall
+  } else {
+    setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
+  }
   info = designer.info();
   buildability = null;  // the sweep follows when the drag ends (settle)
   updateInvalidPanels();
@@ -911,6 +936,10 @@ window.phedraDesigner = {
     return p ? screenOf(p) : null;
   },
   apply: (p) => apply(p),
+  /// One drag step as the hand makes it: {key, index, value: [x, y, z] (a height: [h, 0, 0])}.
+  edit: (edit) => applyEdit(edit),
+  /// designer.keep's answer to the last keep-buildable step.
+  lastKeep: () => lastKeep,
   figures: () => figures,
   /// The last buildability report (null while it is computed), the panels shown
   /// red (not simple) and orange (colliding at the slider's t).
@@ -941,7 +970,10 @@ window.phedraDesigner = {
   /// labels), `full` (the step and a draw at full resolution, waited for) and
   /// `frame` (the same at the resolution a drag uses, `ratio` of the full one);
   /// for reference `load`, an edit through the preset's text (sign toggles, mode
-  /// changes, the JSON editor).
+  /// changes, the JSON editor); `keep`, the step of a keep-buildable drag
+  /// (Designer.keep: the check at t*), and `keepProjection`, such steps of a
+  /// height dragged where panels would cross (the other heights projected, or
+  /// the handle stopped: `projected`, `clamped` count them).
   measure(runs) {
     const start = clone(preset);
     const moved = (k) => start.trajectory[1].map((x, i) => x + (i === 2 ? 1e-3 * Math.sin(k) : 0));
@@ -974,6 +1006,25 @@ window.phedraDesigner = {
     const ratio = dragRatio;
     const frame = time(drawn);
     endDrag();
+    // Keep-buildable steps (issue 14): the check at t* (simple panels, no
+    // collision), and the projection of the apex heights when it fails.
+    $('keep').checked = true;
+    let projected = 0, clamped = 0;
+    const keep = time((k) => {
+      applyEdit({ key: 'trajectory', index: 1, value: moved(k) });
+      projected += lastKeep?.projected ? 1 : 0;
+      clamped += lastKeep?.clamped ? 1 : 0;
+    });
+    // A height dragged where its panels would cross (z1 below z2: the '+' faces
+    // of that column cross): the other heights follow, or the handle stops.
+    apply(start);
+    const keepProjection = time((k) => {
+      applyEdit({ key: 'apex_heights', index: 1, value: [start.apex_heights[2] - 0.1 - 0.01 * k, 0, 0] });
+      projected += lastKeep?.projected ? 1 : 0;
+      clamped += lastKeep?.clamped ? 1 : 0;
+    });
+    $('keep').checked = false;
+    keepHeld = null;
     const load = time((k) => {
       const c = clone(start);
       c.trajectory[1] = moved(k);
@@ -983,6 +1034,6 @@ window.phedraDesigner = {
     });
     drag = wasDragging;
     apply(start);
-    return { vertices: info.vertices, core, step, full, frame, ratio, load };
+    return { vertices: info.vertices, panels: info.faces, core, step, full, frame, ratio, load, keep, keepProjection, projected, clamped };
   },
 };

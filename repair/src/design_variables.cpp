@@ -56,7 +56,8 @@ void DesignVariables::add_length(const Pointer& pointer, const std::string& fiel
   variables_.push_back({field, DesignVariable::Kind::length, preset_.at(pointer).get<double>(), model_size});
 }
 
-DesignVariables::DesignVariables(const json& preset, const std::vector<VariableGroup>& groups, double model_size)
+DesignVariables::DesignVariables(const json& preset, const std::vector<VariableGroup>& groups, double model_size,
+                                 const std::vector<std::string>& fixed)
     : preset_(preset) {
   const Pointer root;
   if (preset_.contains("axis") && is_number_array(preset_["axis"]) && preset_["axis"].size() == 3) {
@@ -155,6 +156,14 @@ DesignVariables::DesignVariables(const json& preset, const std::vector<VariableG
           }
         }
       }
+    }
+  }
+  // A held field stays (a trajectory point or direction: all its coordinates).
+  for (std::size_t k = 0; k < variables_.size(); ++k) {
+    const bool turn = variables_[k].kind == DesignVariable::Kind::turn;
+    const std::string pointer = turn ? turns_[slot_[k]].pointer.to_string() : lengths_[slot_[k]].pointer.to_string();
+    for (const std::string& f : fixed) {
+      if (pointer == f || pointer.rfind(f + "/", 0) == 0) variables_[k].fixed = true;
     }
   }
   if (variables_.empty()) {

@@ -194,7 +194,7 @@ void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<do
   for (std::size_t k = 0; k < n; ++k) {
     const DesignVariable& v = variables.variables()[k];
     step[k] = 0.02 * v.scale;
-    const double reach = v.kind == DesignVariable::Kind::turn ? 0.5 * std::numbers::pi : 0.5 * v.scale;
+    const double reach = v.fixed ? 0.0 : v.kind == DesignVariable::Kind::turn ? 0.5 * std::numbers::pi : 0.5 * v.scale;
     lower[k] = v.start - reach;
     upper[k] = v.start + reach;
     x[k] = std::clamp(x[k], lower[k], upper[k]);
@@ -348,6 +348,54 @@ std::vector<FieldChange> changes_between(const json& before, const json& after, 
 
 }  // namespace
 
+bool buildable_at_t_star(const Design& design) {
+  const Assembly& a = design.assembly;
+  for (std::size_t m = 0; m < a.member_count(); ++m) {
+    for (std::size_t f = 0; f < a.topology(m).face_count(); ++f) {
+      if (!(shape_margin(panel_nets(a, m, f)) > 0.0)) return false;
+    }
+  }
+  return !self_intersection_at_t_star(design);
+}
+
+std::optional<Projection> project_buildable(const json& preset, const ProjectionOptions& options) {
+  const Clock::time_point start = Clock::now();
+  Projection out;
+  const Design input = design_from_json(preset);
+  ++out.evaluations;
+  if (buildable_at_t_star(input)) {
+    out.preset = preset;
+    return out;
+  }
+  RepairOptions search;
+  search.vary = options.vary;
+  search.fixed = options.fixed;
+  search.max_seconds = options.max_seconds;
+  std::optional<DesignVariables> variables;
+  try {
+    variables.emplace(preset, options.vary, input.assembly.model_size(), options.fixed);
+  } catch (const InvalidInputError&) {
+    return std::nullopt;  // nothing to vary
+  }
+  std::size_t panels = 0;
+  for (std::size_t m = 0; m < input.assembly.member_count(); ++m) panels += input.assembly.topology(m).face_count();
+  Problem problem(*variables, search, panels, input.assembly.model_size());
+  const std::vector<double> x0 = variables->start();
+  auto left = [&] { return options.max_seconds - seconds_since(start); };
+  problem.set_mode(ShapeMode::positive_net, false, 1.0);
+  std::vector<double> x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
+  problem.set_mode(ShapeMode::exact, false, 1.0);
+  if (total_violation(problem, x) > 0.0 && left() > 0.0) {
+    x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
+  }
+  out.evaluations += problem.evaluations();
+  if (total_violation(problem, x) > 0.0) return std::nullopt;
+  out.preset = variables->preset_at(x);
+  out.moved = true;
+  if (!buildable_at_t_star(design_from_json(out.preset))) return std::nullopt;
+  return out;
+}
+
 json named_result(const json& result, const std::string& input_name, const std::string& vary, const RepairResult& r) {
   json out = result;
   if (r.found) {
@@ -379,7 +427,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   RepairResult r;
   const Design input = design_from_json(preset);
   const double size = input.assembly.model_size();
-  const DesignVariables variables(preset, options.vary, size);  // bad --vary: an error even when nothing is to do
+  const DesignVariables variables(preset, options.vary, size, options.fixed);  // bad --vary: an error even when nothing is to do
   r.notes = variables.notes();
   r.before = verify(preset);
   const double required = options.required_fraction;
@@ -480,7 +528,9 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   for (std::size_t s = 0; s <= options.restarts && seconds_since(start) < shape_time; ++s) {
     std::vector<double> x = x0;
     const double radius = std::min(0.4, 0.03 * static_cast<double>(s));
-    for (std::size_t k = 0; k < x.size(); ++k) x[k] += radius * variables.variables()[k].scale * normal(rng);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      if (!variables.variables()[k].fixed) x[k] += radius * variables.variables()[k].scale * normal(rng);
+    }
     if (std::optional<std::vector<double>> found = simple_from(x)) {
       simple.push_back(std::move(*found));
       if (simple.size() >= options.shape_candidates) break;

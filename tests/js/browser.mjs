@@ -54,7 +54,7 @@ export function helixPreset(profiles) {
   for (let i = 0; i <= m; ++i) {
     const q = 0.33 * 2 * Math.PI * i / m;
     trajectory.push([3 * Math.cos(q), 3 * Math.sin(q), 1.32 * i / m]);
-    const r = q + 20 * Math.PI / 180;
+    const r = q - 20 * Math.PI / 180;  // turned this way every panel is simple and the motion collision-free
     directions.push([Math.cos(r), Math.sin(r), 0]);
   }
   return { name: `helix-${profiles}`, trajectory, directions, apex_heights: [-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8], signs: '++++++' };

@@ -141,6 +141,53 @@ try {
   }
   check(await api((p) => window.phedraDesigner.apply(p), JSON.parse(readFileSync(preset, 'utf8'))), 'the default preset again');
   await settled();
+  {
+    // Keep buildable (issue 14): apex height 1 dragged below height 2 would cross
+    // the '+' faces of column 0; with the mode on, the other heights follow (or
+    // the handle stops), and every step leaves every panel simple.
+    const start = await api(() => window.phedraDesigner.preset());
+    await page.check('#keep');
+    let projected = 0;
+    for (let k = 1; k <= 6; ++k) {
+      const wanted = start.apex_heights[1] + (start.apex_heights[2] - 0.2 - start.apex_heights[1]) * k / 6;
+      check(await api((v) => window.phedraDesigner.edit({ key: 'apex_heights', index: 1, value: [v, 0, 0] }), wanted), `keep step ${k} refused`);
+      const answer = await api(() => window.phedraDesigner.lastKeep());
+      projected += answer.projected ? 1 : 0;
+      const red = await api(() => window.phedraDesigner.invalidPanels());
+      check(red.length === 0, `keep step ${k}: panels ${red} not simple (${JSON.stringify(answer)})`);
+      const now = await api(() => window.phedraDesigner.preset());
+      check(answer.clamped || Math.abs(now.apex_heights[1] - wanted) < 1e-12, `keep step ${k}: the held height is ${now.apex_heights[1]}, not ${wanted}`);
+    }
+    check(projected > 0, 'no keep step moved the other heights');
+    const moved = await api(() => window.phedraDesigner.preset());
+    check(moved.apex_heights.some((h, j) => j !== 1 && h !== start.apex_heights[j]), 'the other heights did not follow');
+    // Without the mode the same value makes bow-ties.
+    await page.uncheck('#keep');
+    check(await api((p) => window.phedraDesigner.apply(p), start), 'the default preset again');
+    await api((v) => window.phedraDesigner.edit({ key: 'apex_heights', index: 1, value: [v, 0, 0] }), start.apex_heights[2] - 0.2);
+    check((await api(() => window.phedraDesigner.invalidPanels())).length > 0, 'the same height without keep buildable has no bow-ties');
+    // A mouse drag of a trajectory point with the mode on: when the hand stops, the
+    // design is buildable over its whole interval (the motion repaired if needed).
+    check(await api((p) => window.phedraDesigner.apply(p), start), 'the default preset again');
+    await settled();
+    await page.check('#keep');
+    const [hx, hy] = await api(() => window.phedraDesigner.handleScreen('trajectory', 5));
+    await page.mouse.move(hx, hy);
+    await page.mouse.down();
+    for (let k = 1; k <= 8; ++k) await page.mouse.move(hx + 8 * k, hy + 5 * k);
+    await page.mouse.up();
+    await page.waitForFunction(() => window.phedraDesigner.buildability() !== null &&
+      !/^repairing/.test(document.getElementById('repair-result').textContent), null, { timeout: 60000 });
+    await page.waitForTimeout(300);
+    const b = await settled();
+    check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'bow-ties after a keep-buildable drag');
+    check(b.buildable || (await page.$eval('#repair-result', (e) => e.textContent)).startsWith('no buildable'),
+      `after a keep-buildable drag: "${await status()}" / "${await page.$eval('#repair-result', (e) => e.textContent)}"`);
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-keep.png') });
+    await page.uncheck('#keep');
+    check(await api((p) => window.phedraDesigner.apply(p), JSON.parse(readFileSync(preset, 'utf8'))), 'the default preset again');
+    await settled();
+  }
 
   // Drag trajectory point 3 with the mouse: the preset and the mesh change, still valid.
   const info = await api(() => window.phedraDesigner.info());

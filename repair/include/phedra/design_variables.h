@@ -26,13 +26,16 @@ struct DesignVariable {
   Kind kind = Kind::length;
   double start = 0.0;  ///< its value in the input (a turn starts at 0)
   double scale = 1.0;  ///< the model size for lengths, 1 for turns (radians)
+  bool fixed = false;  ///< kept at its start (a handle the user holds)
 };
 
 class DesignVariables {
  public:
-  /// The variables of `preset` (a preset object) in `groups`. InvalidInputError
-  /// ("--vary") when the groups give nothing to change.
-  DesignVariables(const nlohmann::json& preset, const std::vector<VariableGroup>& groups, double model_size);
+  /// The variables of `preset` (a preset object) in `groups`; those at the JSON
+  /// pointers `fixed` ("/trajectory/3", "/apex_heights/2") stay at their start.
+  /// InvalidInputError ("--vary") when the groups give nothing to change.
+  DesignVariables(const nlohmann::json& preset, const std::vector<VariableGroup>& groups, double model_size,
+                  const std::vector<std::string>& fixed = {});
 
   const std::vector<DesignVariable>& variables() const { return variables_; }
   std::size_t size() const { return variables_.size(); }

@@ -25,6 +25,8 @@ namespace phedra {
 
 struct RepairOptions {
   std::vector<VariableGroup> vary{VariableGroup::apex_heights, VariableGroup::directions};
+  /// Fields that stay as they are (JSON pointers, "/trajectory/3"): a handle the user holds.
+  std::vector<std::string> fixed;
   /// The part of the flexion interval around t* that must be buildable: from
   /// t* towards each limit, this fraction of the way (1: all of it).
   double required_fraction = 1.0;
@@ -74,6 +76,31 @@ struct RepairResult {
 /// Repairs `preset` (a preset object). InvalidInputError for a preset that does
 /// not build and for bad options.
 RepairResult repair(const nlohmann::json& preset, const RepairOptions& options = {});
+
+/// The keep-buildable drag of the designer: how much a step may search.
+struct ProjectionOptions {
+  std::vector<VariableGroup> vary{VariableGroup::apex_heights};
+  std::vector<std::string> fixed;  ///< the held handle's field (JSON pointer)
+  std::size_t max_evaluations = 200;
+  double max_seconds = 0.012;      ///< within a 60 Hz frame with the redraw
+};
+
+struct Projection {
+  nlohmann::json preset;   ///< the design to show
+  bool moved = false;      ///< other fields than the held one changed
+  std::size_t evaluations = 0;
+};
+
+/// Every panel simple and the configuration at t* free of collisions: what a
+/// keep-buildable drag keeps at every step.
+bool buildable_at_t_star(const Design& design);
+
+/// One step of a keep-buildable drag: `preset` itself when every panel is simple
+/// and t* is free of collisions, else the nearest such design changing only
+/// `vary` but not the held fields, found within the budget (the motion over
+/// the interval is checked when the hand stops); nullopt when none was found.
+/// InvalidInputError when `preset` does not build.
+std::optional<Projection> project_buildable(const nlohmann::json& preset, const ProjectionOptions& options = {});
 
 /// `result` (a repaired or closest preset) named after the input: "NAME-repaired"
 /// (or "NAME-closest" when `found` is false) with a description saying what was
