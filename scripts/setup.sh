@@ -2,7 +2,9 @@
 # Installs what phedra needs from Debian packages, only what is missing
 # (chromium runs the viewer's browser test; emscripten and node-acorn build the
 # browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
-# software WebGL renderer bench/designer.mjs measures), then the npm packages of web/.
+# software WebGL renderer bench/designer.mjs measures), then the npm packages of web/
+# and NLopt for the browser core (built once from Debian's source package of it,
+# scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
 set -euo pipefail
 
@@ -27,9 +29,14 @@ if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   missing+=(nodejs npm)
 fi
 
+finish() {
+  bash "$(dirname "$0")/setup-web.sh"
+  bash "$(dirname "$0")/build-nlopt-wasm.sh"
+}
+
 if ((${#missing[@]} == 0)); then
   echo "setup: all packages present"
-  bash "$(dirname "$0")/setup-web.sh"
+  finish
   exit 0
 fi
 
@@ -42,4 +49,4 @@ echo "setup: installing ${missing[*]}"
 $sudo apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 echo "setup: done"
-bash "$(dirname "$0")/setup-web.sh"
+finish

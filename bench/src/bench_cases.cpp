@@ -4,6 +4,7 @@
 #include "phedra/tube_array.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace phedra::bench {
 
@@ -65,10 +66,20 @@ nlohmann::json unbuildable_default_preset() {
 }
 
 nlohmann::json unbuildable_open_preset(std::size_t strips) {
-  nlohmann::json p = preset_to_json(general_open_input(strips + 1, 5, true));
-  nlohmann::json& h = p["apex_heights"];
-  for (std::size_t j = 0; j < h.size(); ++j) h[j] = 0.7 * static_cast<double>(j) - 1.0;  // monotone: '+' faces crossed
-  return p;
+  // The designer bench's helix (tests/js/browser.mjs), buildable as it is, with
+  // apex height 1 dragged below height 2: every face of the first column crosses.
+  nlohmann::json trajectory = nlohmann::json::array(), directions = nlohmann::json::array();
+  for (std::size_t i = 0; i <= strips; ++i) {
+    const double q = 0.33 * 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(strips);
+    trajectory.push_back({3.0 * std::cos(q), 3.0 * std::sin(q), 1.32 * static_cast<double>(i) / static_cast<double>(strips)});
+    const double r = q - 20.0 * std::numbers::pi / 180.0;
+    directions.push_back({std::cos(r), std::sin(r), 0.0});
+  }
+  return {{"name", "helix-" + std::to_string(strips) + "-crossed"},
+          {"trajectory", trajectory},
+          {"directions", directions},
+          {"apex_heights", {-1.5, -0.7, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8}},
+          {"signs", "++++++"}};
 }
 
 }  // namespace phedra::bench

@@ -371,7 +371,7 @@ class Runner {
                unbuildable_default_preset(), 1.0);
     const std::size_t strips = options_.quick ? 20 : 100;
     repair_one("strips_" + std::to_string(strips),
-               "an open design of " + std::to_string(strips) + " strips, mixed signs, monotone heights",
+               "a helical open design of " + std::to_string(strips) + " strips with a height moved too far (a column of bow-ties)",
                unbuildable_open_preset(strips), options_.quick ? std::optional<double>() : std::optional<double>(10.0));
   }
 

@@ -523,6 +523,21 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     }
     return x;
   };
+  // Stage 2, the motion: from a simple design, no collision over the required
+  // part, then towards the input and to the nearest such design.
+  auto motion_from = [&](std::vector<double> x, double fraction) {
+    problem.set_mode(ShapeMode::exact, true, fraction);
+    // Already free over the required part: the nearest simple design is the nearest buildable one.
+    if (total_violation(problem, x) == 0.0) return consider(x, fraction);
+    x = feasible_search(variables, problem, x, options, time_left(), options.motion_evaluations);
+    if (total_violation(problem, x) == 0.0) {
+      x = towards(problem, x, x0);
+      x = local_search(variables, problem, x, options, time_left(), options.motion_evaluations);
+    }
+    return consider(x, fraction);
+  };
+  // Each simple design found (the input's own first) goes to stage 2 at once;
+  // further starts only while none of them gave a buildable design.
   std::vector<std::vector<double>> simple;
   const double shape_time = 0.5 * options.max_seconds;
   for (std::size_t s = 0; s <= options.restarts && seconds_since(start) < shape_time; ++s) {
@@ -533,26 +548,9 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     }
     if (std::optional<std::vector<double>> found = simple_from(x)) {
       simple.push_back(std::move(*found));
+      if (time_left() > 0.0 && motion_from(simple.back(), required)) break;
       if (simple.size() >= options.shape_candidates) break;
     }
-  }
-  std::sort(simple.begin(), simple.end(), [&](const auto& a, const auto& b) {
-    return variables.distance(a) < variables.distance(b);
-  });
-
-  // Stage 2, the motion: from each simple design (nearest first), no collision
-  // over the required part, then towards the input and to the nearest such design.
-  auto motion_from = [&](std::vector<double> x, double fraction) {
-    problem.set_mode(ShapeMode::exact, true, fraction);
-    x = feasible_search(variables, problem, x, options, time_left(), options.motion_evaluations);
-    if (total_violation(problem, x) == 0.0) {
-      x = towards(problem, x, x0);
-      x = local_search(variables, problem, x, options, time_left(), options.motion_evaluations);
-    }
-    return consider(x, fraction);
-  };
-  for (const std::vector<double>& x : simple) {
-    if (time_left() <= 0.0 || motion_from(x, required)) break;
   }
   if (!best && options.widest_fallback && !simple.empty()) {
     for (const double fraction : {0.75, 0.5, 0.25, 0.0}) {
@@ -562,26 +560,31 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   }
   if (!best && options.widest_fallback && best_partial && best_partial->fraction > 0.0) best = best_partial;
   if (best) {
-    // Changes below 0.1 % of the model size (or 0.06 degrees) are the search's
-    // noise: put them back when the design stays as buildable without them.
-    std::vector<double> tidy = best->x;
-    bool any = false;
-    for (std::size_t k = 0; k < tidy.size(); ++k) {
-      const DesignVariable& v = variables.variables()[k];
-      if (tidy[k] != v.start && std::abs(tidy[k] - v.start) < 1e-3 * v.scale) {
-        tidy[k] = v.start;
-        any = true;
-      }
-    }
-    if (any) {
-      try {
-        const BuildabilityReport report = verify(variables.preset_at(tidy));
-        if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12) {
-          best->x = tidy;
-          best->distance = variables.distance(tidy);
-          best->report = report;
+    // Changes below 0.1 % of the model size (or 0.06 degrees) are mostly the
+    // search's noise: put them back while the design stays as buildable without
+    // them (all of them, else the turns or the lengths alone, else smaller ones).
+    for (const double threshold : {1e-3, 1e-4}) {
+      for (const int only : {-1, static_cast<int>(DesignVariable::Kind::turn), static_cast<int>(DesignVariable::Kind::length)}) {
+        std::vector<double> tidy = best->x;
+        bool any = false;
+        for (std::size_t k = 0; k < tidy.size(); ++k) {
+          const DesignVariable& v = variables.variables()[k];
+          if (only >= 0 && static_cast<int>(v.kind) != only) continue;
+          if (tidy[k] != v.start && std::abs(tidy[k] - v.start) < threshold * v.scale) {
+            tidy[k] = v.start;
+            any = true;
+          }
         }
-      } catch (const Error&) {
+        if (!any) continue;
+        try {
+          const BuildabilityReport report = verify(variables.preset_at(tidy));
+          if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12) {
+            best->x = tidy;
+            best->distance = variables.distance(tidy);
+            best->report = report;
+          }
+        } catch (const Error&) {
+        }
       }
     }
   }

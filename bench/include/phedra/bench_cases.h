@@ -36,9 +36,9 @@ Design open_design_with_panels(std::size_t panels);
 /// default-sized design is measured on.
 nlohmann::json unbuildable_default_preset();
 
-/// An unbuildable open design with `strips` strips (general_open_input with
-/// mixed signs and its heights made monotone, so that its '+' columns are
-/// bow-ties), as a preset.
+/// An unbuildable open design with `strips` strips, as a preset: the designer
+/// bench's buildable helix (8 apexes, all '+') with apex height 1 moved below
+/// height 2, so that every face of the first column is a bow-tie (an edit gone wrong).
 nlohmann::json unbuildable_open_preset(std::size_t strips);
 
 }  // namespace phedra::bench
