@@ -104,7 +104,7 @@ class Designer {
       if (!p) {
         // Against the wall: the furthest buildable point towards the pointer.
         double good = 0.0, bad = 1.0;
-        for (int step = 0; step < 6; ++step) {
+        for (int step = 0; step < 5; ++step) {
           const double middle = 0.5 * (good + bad);
           *entry = between(previous, wanted, middle);
           bool ok = false;

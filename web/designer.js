@@ -679,7 +679,7 @@ function edited(handle, point) {
 // free of collisions, within this budget of the frame; the handle stops where
 // that is impossible. When the hand stops, the motion over the whole interval
 // is repaired too (the held field fixed), undoably.
-const keepBudget = 10;  // ms
+const keepBudget = 7;  // ms: with the stop at the wall (5 designs) and the redraw, within a 60 Hz frame
 let keepHeld = null;    // the JSON pointer of the field the last keep-buildable drag held
 let lastKeep = null;    // designer.keep's answer to the last step
 const keepBuildable = () => $('keep').checked;

@@ -205,7 +205,7 @@ void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<do
   opt.set_initial_step(step);
   opt.set_xtol_abs(tolerance);
   opt.set_maxeval(static_cast<int>(options.max_evaluations));
-  opt.set_maxtime(std::max(0.01, seconds_left));
+  opt.set_maxtime(std::max(1e-3, seconds_left));
 }
 
 void run_opt(nlopt::opt& opt, std::vector<double>& x) {
