@@ -152,13 +152,6 @@ double objective(unsigned n, const double* x, double* gradient, void* data) {
   return sum;
 }
 
-void constraints(unsigned m, double* result, unsigned, const double* x, double* gradient, void* data) {
-  Search& s = *static_cast<Search*>(data);
-  const std::vector<double>& c = s.problem.at(x);
-  std::copy(c.begin(), c.begin() + m, result);
-  (void)gradient;  // COBYLA asks for none
-}
-
 /// The summed violations (an exact penalty: it reaches zero, where squares only
 /// approach it), what the feasibility phase drives to zero; the first point
 /// where they vanish ends the search (nlopt::forced_stop).
@@ -276,7 +269,7 @@ double penalized(unsigned n, const double* x, double* gradient, void* data) {
 std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
                                  const RepairOptions& options, double seconds_left, std::size_t evaluations) {
   nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
-  Nearest nearest{{variables, problem}};
+  Nearest nearest{{variables, problem}, 100.0, {}, 0.0};
   nearest.best = x;
   nearest.best_distance = objective(static_cast<unsigned>(x.size()), x.data(), nullptr, &nearest.search);
   opt.set_min_objective(penalized, &nearest);

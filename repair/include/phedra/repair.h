@@ -2,16 +2,17 @@
 // The nearest buildable design (issue 14): varies the chosen numbers of a preset
 // (design_variables.h) as little as possible, relative to the model size, so
 // that every panel is simple and the motion is free of collisions over the
-// required part of the flexion interval. NLopt's COBYLA minimises the squared
-// distance under smooth-enough margins (docs/design.md, Repair):
-//  - every panel's shape margin (shape_margin: the corner turns and edge scales
-//    of MATH.md section 9) at least `shape_target`;
-//  - over the required part of the motion (t* and `motion_samples` samples a
-//    side), no penetration (the deepest one, a length) and no hinge past shut;
-// first the shapes alone, then everything, from the input and from `restarts`
-// perturbed starts (the buildable set need not be connected). Every candidate
-// is verified by the buildability report itself (200 samples a side), never by
-// the optimizer's own figures.
+// required part of the flexion interval (docs/design.md, Repair). NLopt's
+// Subplex drives summed constraint violations to zero, then minimises the
+// squared distance under an exact penalty:
+//  - panel shapes (MATH.md section 9): first the positive net (every general
+//    edge along its axial one, every axial face simple), then every panel's
+//    shape margin at least `shape_target`; cheap, from the input and from
+//    `restarts` perturbed starts (the simple designs need not be connected);
+//  - the motion, for simple designs only (t* and `motion_samples` samples a
+//    side of the required part): no penetration, no hinge past shut.
+// Every candidate is verified by the buildability report itself (200 samples
+// a side), never by the optimizer's own figures.
 
 #include "phedra/buildability.h"
 #include "phedra/design_variables.h"
