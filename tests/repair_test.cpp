@@ -217,7 +217,7 @@ Tally repair_batch(const std::function<std::optional<json>(int)>& draw, std::siz
 }
 
 #ifdef PHEDRA_SANITIZE_BUILD
-constexpr std::size_t designs_a_batch = 3;  // open designs only (the first of each cycle): ASan makes a sweep ~10x slower
+constexpr std::size_t designs_a_batch = 3;  // ASan makes a sweep about 10x slower
 #else
 constexpr std::size_t designs_a_batch = 100;
 #endif
