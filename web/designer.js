@@ -120,6 +120,7 @@ function apply(candidate, { keepFigures = false } = {}) {
   }
   failure = null;
   preset = candidate;
+  showRepair('');  // a new design: an earlier repair's message no longer applies (Repair and Undo say theirs after)
   info = designer.info();
   faces = Uint32Array.from(designer.faces());
   invalidPanels = new Set(Array.from(designer.invalidPanels()));
@@ -700,6 +701,8 @@ function applyEdit(edit) {
     keepHeld = pointerOf(edit);
     lastKeep = result;
     preset = JSON.parse(designer.presetText());  // projected or stopped at the wall
+    showRepair(result.clamped ? 'keep buildable: the handle stops here; further, a panel would not be simple or t* would collide'
+      : result.projected ? 'keep buildable: the other apex heights follow the handle' : '');
   } else {
     setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
   }
