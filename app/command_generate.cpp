@@ -29,7 +29,8 @@ struct GenerateOptions {
   std::optional<double> static_t;
   double hinge_tolerance = 1e-3;
   bool quiet = false;
-  bool morph = false;
+  bool morph = false;  ///< --morph: the default, said explicitly
+  bool nodes = false;  ///< --nodes: a rigid node per panel
   bool cycle = false;
   bool no_self_intersection = false;
   std::optional<std::size_t> intersection_samples;  ///< default: sweep_samples_for(panels)
@@ -79,7 +80,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   options.seconds = o.seconds;
   options.ping_pong = o.ping_pong;
   options.static_t = o.static_t;
-  options.morph = o.morph;
+  options.morph = !o.nodes;
   options.cycle = o.cycle;
   options.keyframes.relative_tolerance = o.hinge_tolerance;
   Progress progress(context.err, "keyframes", !o.quiet);
@@ -96,34 +97,40 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   progress.finish();
   emit(bytes, o.output, o.preset, context.out);
   context.out << "wrote " << o.output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
-              << report.panels << (o.morph ? " panels (one mesh, morph targets)" : " panels (one node each)");
+              << report.panels
+              << (o.nodes ? " panels (one node each, hinge tree " + std::to_string(report.tree_depth) + " levels deep)"
+                          : std::string(" panels (one mesh, morph targets)"));
   if (o.static_t) {
     context.out << ", static at t = " << format_number(*o.static_t) << '\n';
     return;
   }
+  const char* back = o.ping_pong ? ", and back" : "";
   if (o.cycle) {
     const PHedron::ConfigurationCycle c = design.assembly.base().configuration_cycle();
     context.out << ", " << report.keyframes << " keyframes along the configuration curve (" << c.passes.size()
                 << " passes through the flexion limits, " << (c.closed ? "closed" : "open: " + c.stop) << "), "
-                << format_number(o.seconds) << " s a full traversal of the interval" << (o.ping_pong ? ", and back" : "")
-                << '\n';
+                << format_number(o.seconds) << " s a full traversal of the interval" << back << '\n';
   } else {
     const FlexionInterval& f = design.assembly.flexion_interval();
     context.out << ", " << report.keyframes << " keyframes over [" << format_number(range ? range->first : f.lower.t)
                 << ", " << format_number(range ? range->second : f.upper.t) << "] in " << format_number(o.seconds)
-                << " s" << (o.ping_pong ? " and back" : "") << '\n';
+                << " s" << back << '\n';
   }
-  context.out
-              << (o.morph ? "largest vertex error between keyframes: " : "largest hinge opening between keyframes: ")
-              << format_number(report.max_opening) << " (" << format_number(report.max_opening / report.model_size)
-              << " of the model size, tolerance " << format_number(o.hinge_tolerance) << ")\n";
-  if (report.max_opening > report.tolerance) {
-    context.err << "phedra: warning: the " << (o.morph ? "vertex error" : "hinge opening") << " between keyframes ("
-                << format_number(report.max_opening / report.model_size) << " of the model size) exceeds the tolerance "
-                << format_number(o.hinge_tolerance)
-                << (o.morph ? ": the morph targets are capped at 250; the node representation (without --morph) or a "
-                              "larger --hinge-tolerance keeps it"
-                            : ": the keyframes are capped; a larger --hinge-tolerance keeps it")
+  context.out << "largest vertex error between keyframes: " << format_number(report.max_vertex_error) << " ("
+              << format_number(report.max_vertex_error / report.model_size) << " of the model size, at t = "
+              << format_number(report.vertex_error_t) << "; tolerance " << format_number(o.hinge_tolerance)
+              << ", measured at 15 points between every two keyframes)\n";
+  if (o.nodes) {
+    context.out << "largest hinge opening between keyframes: " << format_number(report.max_opening) << " ("
+                << format_number(report.max_opening / report.model_size) << " of the model size)\n";
+  }
+  const double worst = std::max(report.max_vertex_error, report.max_opening);
+  if (worst > report.tolerance) {
+    context.err << "phedra: warning: between keyframes the file is " << format_number(worst / report.model_size)
+                << " of the model size from the exact motion, more than the tolerance " << format_number(o.hinge_tolerance)
+                << (o.nodes ? ": the keyframes are capped; a larger --tolerance keeps it"
+                            : ": the morph targets are capped at 250; --nodes (small models) or a larger --tolerance "
+                              "keeps it")
                 << '\n';
   }
 }
@@ -143,13 +150,18 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
   sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
-  sub->add_option("--hinge-tolerance", o->hinge_tolerance,
-                  "glTF: largest opening of a hinge outside the node tree (with --morph: largest vertex error) "
-                  "between keyframes, relative to the model size")
+  sub->add_option("--tolerance,--hinge-tolerance", o->hinge_tolerance,
+                  "glTF: largest distance of a vertex from its exact place between keyframes (and, with --nodes, "
+                  "largest opening of a hinge outside the node tree), relative to the model size")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  sub->add_flag("--morph", o->morph,
-                "glTF: morph targets (one per keyframe, sparse one-hot weights, at most 250) instead of a node per panel");
+  auto* morph = sub->add_flag("--morph", o->morph,
+                              "glTF: morph targets, the default: one mesh, one target per keyframe (at most 250), "
+                              "sparse one-hot weights; opens and plays at 10^4 panels");
+  sub->add_flag("--nodes", o->nodes,
+                "glTF: one rigid node per panel on a hinge tree instead (panels exactly rigid between keyframes; "
+                "for small models: slow to import above a few thousand panels)")
+      ->excludes(morph);
   sub->add_flag("--cycle", o->cycle,
                 "glTF: animate the whole configuration curve through the flexion limits (strips switch to their mirror "
                 "branch at each limit, see phedra info)");

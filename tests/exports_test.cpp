@@ -72,14 +72,16 @@ TEST_CASE("panel tree: poses reproduce every configuration, tree hinges stay clo
   }
 }
 
-TEST_CASE("glTF: structure, keyframes within the hinge tolerance, animation extras", "[exports]") {
+TEST_CASE("glTF nodes: structure, keyframes within the hinge tolerance, animation extras", "[exports]") {
   for (const std::string preset : {"default", "grid-3x3", "merged-tube"}) {
     CAPTURE(preset);
     const Design d = design(preset);
     GltfOptions options;
+    options.morph = false;
     GltfReport report;
     const std::string bytes = gltf_bytes(d, options, &report);
     CHECK(report.max_opening <= report.tolerance);
+    CHECK(report.max_vertex_error <= report.tolerance);
     CHECK(report.keyframes >= options.keyframes.initial);
     tinygltf::Model model;
     tinygltf::TinyGLTF loader;
@@ -104,6 +106,7 @@ TEST_CASE("glTF: structure, keyframes within the hinge tolerance, animation extr
     gltf_bytes(d, tight, &tight_report);
     CHECK(tight_report.keyframes > report.keyframes);
     CHECK(tight_report.max_opening <= tight_report.tolerance);
+    CHECK(tight_report.max_vertex_error <= tight_report.tolerance);
   }
   // Ping-pong plays back: 2k - 1 keyframes; static: no animation.
   const Design d = design("parallelogram-tube");

@@ -869,7 +869,7 @@ $('load').addEventListener('change', async (e) => {
 });
 /// The animated .glb, written by the core as `phedra generate -o X.glb` writes it.
 function glbBytes() {
-  const bytes = designer.glb(false, false);
+  const bytes = designer.glb(true, false);
   if (bytes.ok === false) throw new Error(bytes.message);
   return Uint8Array.from(bytes);
 }

@@ -38,7 +38,7 @@ new GLTFLoader().load('/model.glb', (gltf) => {
   if (c) {
     $('figures').textContent = `check over ${c.samples} samples (relative to the model size): planarity ${format(c.planarity)}, ` +
       `isometry ${format(c.isometry)}, closure ${format(c.closure)}, shared ${format(c.shared_vertices)}` +
-      (info.max_hinge_opening !== undefined ? `; hinge opening between keyframes ${format(info.max_hinge_opening / info.model_size)}` : '');
+      (info.max_vertex_error !== undefined ? `; between keyframes within ${format(info.max_vertex_error / info.model_size)} of the exact motion` : '');
   }
   // What the command said of the design when it wrote the file (docs/design.md, Buildable designs).
   if (info.buildability) {
@@ -64,7 +64,8 @@ new GLTFLoader().load('/model.glb', (gltf) => {
     $('slider').disabled = $('play').disabled = true;
     $('t').textContent = format(info.t ?? info.t_star);
   }
-  $('status').textContent = `${gltf.parser.json.nodes.length} panels` + (duration ? `, ${times.length} keyframes` : ', static');
+  const panels = info.panels ?? gltf.parser.json.nodes.length;
+  $('status').textContent = `${panels} panels (${info.representation ?? 'nodes'})` + (duration ? `, ${times.length} keyframes` : ', static');
   window.phedraViewer.ready = true;
 }, undefined, (error) => { $('status').textContent = `cannot load the model: ${error.message ?? error}`; console.error(error); });
 
@@ -90,15 +91,31 @@ renderer.setAnimationLoop(() => {
   controls.update();
   renderer.render(scene, camera);
 });
-// For tests and scripts: the world position of a panel corner, and the state.
+// For tests and scripts: the world position of a mesh vertex, and the state.
 window.phedraViewer = {
   ready: false,
   pause() { playing = false; },
-  corner(panel, corner) {
-    let mesh = null, i = 0;
-    scene.traverse((o) => { if (o.isMesh && i++ === panel) mesh = o; });
-    const v = new THREE.Vector3().fromBufferAttribute(mesh.geometry.getAttribute('position'), corner);
-    return v.applyMatrix4(mesh.matrixWorld).toArray();
+  /// Mesh vertex `index` (as phedra numbers it: `phedra sample`'s order) in
+  /// world space, as shown: morph targets applied, or through the panel node
+  /// that holds it (extras.vertices).
+  vertex(index) {
+    let found = null;
+    scene.traverse((o) => {
+      if (found || !o.isMesh) return;
+      const ids = o.userData.vertices;
+      const local = ids ? ids.indexOf(index) : index;
+      const position = o.geometry.getAttribute('position');
+      if (local < 0 || local >= position.count) return;
+      const v = new THREE.Vector3().fromBufferAttribute(position, local);
+      const morphs = o.geometry.morphAttributes.position;
+      if (morphs) {
+        o.morphTargetInfluences.forEach((w, j) => {
+          if (w) v.add(new THREE.Vector3().fromBufferAttribute(morphs[j], local).multiplyScalar(w));
+        });
+      }
+      found = v.applyMatrix4(o.matrixWorld).toArray();
+    });
+    return found;
   },
   t() { return $('t').textContent; },
 };

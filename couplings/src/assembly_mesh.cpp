@@ -1,6 +1,7 @@
 #include "phedra/assembly_mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace phedra {
@@ -28,6 +29,58 @@ AssemblyMesh separate_mesh(const Assembly& assembly) {
     }
   }
   return mesh;
+}
+
+std::vector<std::size_t> coincident_vertices(const AssemblyMesh& mesh, const Assembly& assembly) {
+  const std::size_t n = mesh.vertices.size();
+  std::vector<std::size_t> representative(n);
+  for (std::size_t v = 0; v < n; ++v) representative[v] = v;
+  const FlexionInterval& f = assembly.flexion_interval();
+  std::vector<double> ts{assembly.t_star()};
+  if (std::isfinite(f.lower.t) && std::isfinite(f.upper.t)) {
+    for (double s : {0.3, 0.7}) ts.push_back(f.lower.t + s * (f.upper.t - f.lower.t));
+    ts.push_back(f.lower.t);
+    ts.push_back(f.upper.t);
+  }
+  std::vector<Points> at;
+  for (double t : ts) at.push_back(mesh.positions(assembly.evaluate(t)));
+  const double tolerance = 1e-9 * assembly.model_size();
+  std::vector<std::size_t> by_x(n);
+  for (std::size_t v = 0; v < n; ++v) by_x[v] = v;
+  const Points& first = at.front();
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) { return first[a].x() < first[b].x(); });
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n && first[by_x[j]].x() - first[by_x[i]].x() <= tolerance; ++j) {
+      const std::size_t a = std::min(by_x[i], by_x[j]), b = std::max(by_x[i], by_x[j]);
+      const bool together = std::all_of(at.begin(), at.end(), [&](const Points& p) { return (p[a] - p[b]).norm() <= tolerance; });
+      if (together) representative[b] = std::min(representative[b], representative[a]);
+    }
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t v = 0; v < n; ++v) {
+      const std::size_t r = representative[representative[v]];
+      changed = changed || r != representative[v];
+      representative[v] = r;
+    }
+  }
+  return representative;
+}
+
+std::vector<Quad> welded_faces(const AssemblyMesh& mesh, const std::vector<std::size_t>& representative) {
+  std::vector<Quad> faces = mesh.faces;
+  for (Quad& q : faces) {
+    for (std::size_t& v : q) v = representative[v];
+  }
+  return faces;
+}
+
+std::vector<std::size_t> distinct_corners(const Quad& q) {
+  std::vector<std::size_t> corners;
+  for (std::size_t c : q) {
+    if (std::find(corners.begin(), corners.end(), c) == corners.end()) corners.push_back(c);
+  }
+  return corners;
 }
 
 AssemblyMesh merged_mesh(const Assembly& assembly) { return welded_mesh(assembly, SharedWalls::remove); }

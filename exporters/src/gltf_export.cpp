@@ -75,43 +75,69 @@ std::string face_name(const Assembly& a, const AssemblyMesh& mesh, std::size_t f
          std::to_string(g.column_of(r.vertex)) + ")";
 }
 
-/// Keyframes for morph targets: vertex positions interpolate linearly, so the
-/// intervals are split until the chord error at 1/4, 1/2, 3/4 is within tolerance.
+/// The largest distance, at the fractions `at` of [a, b], of the vertices as
+/// linear interpolation between the keyframes places them from their exact
+/// places at the same t; `where` gets the t.
+double chord_error(const std::function<Points(double)>& positions, double a, const Points& pa, double b,
+                   const Points& pb, std::initializer_list<double> at, double& where) {
+  double error = 0.0;
+  for (double s : at) {
+    const double t = a + s * (b - a);
+    const Points truth = positions(t);
+    for (std::size_t v = 0; v < truth.size(); ++v) {
+      const double d = ((1 - s) * pa[v] + s * pb[v] - truth[v]).norm();
+      if (d > error) error = d, where = t;
+    }
+  }
+  return error;
+}
+
+/// Keyframes for morph targets: vertex positions interpolate linearly, so an
+/// interval is split at its midpoint until the chord error at 1/4, 1/2, 3/4 and
+/// then at k/16 (k = 1..15) is within tolerance (or `maximum` keyframes are reached).
 std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
                                           double tolerance, std::size_t initial, std::size_t maximum, double& worst,
                                           double& worst_t) {
   std::map<double, Points> frames;
   for (double t : interval_samples(lo, hi, std::min(initial, maximum))) frames[t] = positions(t);
-  bool refined = true;
-  while (refined) {
-    refined = false;
-    worst = 0.0;
-    std::vector<double> splits;
-    for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) {
-      const auto next = std::next(it);
-      double error = 0.0, where = it->first;
-      for (double s : {0.25, 0.5, 0.75}) {
-        const double t = it->first + s * (next->first - it->first);
-        const Points truth = positions(t);
-        for (std::size_t v = 0; v < truth.size(); ++v) {
-          const double d = ((1 - s) * it->second[v] + s * next->second[v] - truth[v]).norm();
-          if (d > error) {
-            error = d;
-            where = t;
-          }
-        }
+  std::vector<std::pair<double, double>> pending;
+  for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) pending.push_back({it->first, std::next(it)->first});
+  worst = 0.0;
+  while (!pending.empty()) {
+    std::vector<std::pair<double, double>> next;
+    for (const auto& [a, b] : pending) {
+      const Points& pa = frames.at(a);
+      const Points& pb = frames.at(b);
+      double where = a;
+      double error = chord_error(positions, a, pa, b, pb, {0.25, 0.5, 0.75}, where);
+      if (error <= tolerance) {
+        error = chord_error(positions, a, pa, b, pb,
+                            {1 / 16., 2 / 16., 3 / 16., 4 / 16., 5 / 16., 6 / 16., 7 / 16., 8 / 16., 9 / 16., 10 / 16.,
+                             11 / 16., 12 / 16., 13 / 16., 14 / 16., 15 / 16.},
+                            where);
       }
-      if (error > tolerance && frames.size() + splits.size() < maximum) {
-        splits.push_back(0.5 * (it->first + next->first));
+      const double mid = 0.5 * (a + b);
+      if (error > tolerance && mid > a && mid < b && frames.size() < maximum) {
+        frames[mid] = positions(mid);
+        next.push_back({a, mid});
+        next.push_back({mid, b});
       } else if (error > worst) {
         worst = error;
         worst_t = where;
       }
     }
-    for (double t : splits) frames[t] = positions(t);
-    refined = !splits.empty();
+    pending = std::move(next);
   }
   return frames;
+}
+
+/// The triangles of a panel as mesh indices: two for a quad, one for a panel
+/// whose two corners are one welded vertex (no zero-length edge, no sliver).
+void append_triangles(const Quad& q, std::vector<std::uint32_t>& out) {
+  const std::vector<std::size_t> corners = distinct_corners(q);
+  for (std::size_t k = 1; k + 1 < corners.size(); ++k) {
+    for (std::size_t c : {corners[0], corners[k], corners[k + 1]}) out.push_back(static_cast<std::uint32_t>(c));
+  }
 }
 
 /// What an animation follows: a parameter u over [lo, hi] (the motion parameter t
@@ -194,18 +220,63 @@ MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const Gltf
   return path;
 }
 
+/// Names of the morph targets, "t=..." with as few digits as keep them apart
+/// (Blender names its shape keys after them).
+tinygltf::Value target_names(const std::vector<double>& ts) {
+  for (int digits = 6;; ++digits) {
+    std::vector<std::string> names;
+    for (double t : ts) {
+      std::ostringstream name;
+      name.precision(digits);
+      name << "t=" << t;
+      names.push_back(name.str());
+    }
+    std::vector<std::string> sorted = names;
+    std::sort(sorted.begin(), sorted.end());
+    if (digits >= 17 || std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end()) {
+      tinygltf::Value::Array out;
+      for (const std::string& n : names) out.push_back(tinygltf::Value(n));
+      return tinygltf::Value(out);
+    }
+  }
+}
+
+/// Keyframe k's place in the animation: forward, then (ping-pong) back again.
+std::vector<std::size_t> play_sequence(std::size_t keyframes, bool ping_pong) {
+  std::vector<std::size_t> sequence;
+  for (std::size_t k = 0; k < keyframes; ++k) sequence.push_back(k);
+  if (ping_pong) {
+    for (std::size_t k = keyframes - 1; k-- > 0;) sequence.push_back(k);
+  }
+  return sequence;
+}
+
+/// Animation times of a play sequence: forward times, mirrored about the end when going back.
+std::vector<float> sequence_times(const std::vector<double>& forward_seconds, const std::vector<std::size_t>& sequence) {
+  const double total = forward_seconds.back();
+  std::vector<float> times;
+  for (std::size_t s = 0; s < sequence.size(); ++s) {
+    const double forward = forward_seconds[sequence[s]];
+    times.push_back(checked(s < forward_seconds.size() ? forward : 2.0 * total - forward));
+  }
+  return times;
+}
+
 /// The morph-target representation: one node, one mesh (a primitive per member),
-/// one target per keyframe, weights animated one-hot (stored sparse).
+/// one target per keyframe, weights animated one-hot (stored sparse). A static
+/// export (options.static_t) is the mesh at that t with no targets.
 void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
                  const MotionPath& path, const GltfOptions& options, GltfReport& report,
                  tinygltf::Value::Array& keyframe_t) {
   const Assembly& assembly = design.assembly;
-  const std::map<double, Points> frames =
-      morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
-                      std::max(options.keyframes.initial, path.minimum_keyframes),
-                      std::min(options.max_morph_targets, options.keyframes.maximum), report.max_opening,
-                      report.opening_t);
-  const Points base = path.positions(path.rest);
+  std::map<double, Points> frames;
+  if (!options.static_t) {
+    frames = morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
+                             std::max(options.keyframes.initial, path.minimum_keyframes),
+                             std::min(options.max_morph_targets, options.keyframes.maximum), report.max_vertex_error,
+                             report.vertex_error_t);
+  }
+  const Points base = path.positions(options.static_t ? *options.static_t : path.rest);
   auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {
     std::vector<double> lo3(3, INFINITY), hi3(3, -INFINITY);
     for (std::size_t k = 0; k < data.size(); ++k) {
@@ -222,22 +293,21 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   }
   const int base_accessor = add_positions(base_data, true);
   std::vector<int> targets;
+  std::vector<double> target_t;
   for (const auto& [u, p] : frames) {
     std::vector<float> delta;
     for (std::size_t v = 0; v < p.size(); ++v) {
       for (int c = 0; c < 3; ++c) delta.push_back(checked(p[v][c] - static_cast<double>(base_data[v * 3 + c])));
     }
     targets.push_back(add_positions(delta, true));
-    keyframe_t.push_back(tinygltf::Value(path.t_of(u)));
+    target_t.push_back(path.t_of(u));
   }
   tinygltf::Mesh m;
   m.name = assembly.name();
   for (std::size_t member = 0; member < assembly.member_count(); ++member) {
     std::vector<std::uint32_t> indices;
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      if (mesh.face_member[f] != member) continue;
-      const Quad& q = mesh.faces[f];
-      for (std::size_t k : {0, 1, 2, 0, 2, 3}) indices.push_back(static_cast<std::uint32_t>(q[k]));
+      if (mesh.face_member[f] == member) append_triangles(mesh.faces[f], indices);
     }
     if (indices.empty()) continue;
     const int view = buffer.add_view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
@@ -250,7 +320,12 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     for (int target : targets) primitive.targets.push_back({{"POSITION", target}});
     m.primitives.push_back(primitive);
   }
-  m.weights.assign(targets.size(), 0.0);
+  if (!targets.empty()) {
+    m.weights.assign(targets.size(), 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = target_names(target_t);
+    m.extras = tinygltf::Value(extras);
+  }
   model.meshes.push_back(m);
   tinygltf::Node node;
   node.name = assembly.name();
@@ -261,26 +336,35 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   scene.nodes.push_back(0);
   model.scenes.push_back(scene);
   model.defaultScene = 0;
+  report.panels = mesh.faces.size();
+  report.keyframes = targets.size();
+  if (targets.empty()) return;
 
   const std::size_t count = targets.size();
-  std::vector<float> times;
-  for (const auto& [u, p] : frames) times.push_back(checked(path.seconds_of(u)));
+  std::vector<double> forward_seconds;
+  for (const auto& [u, p] : frames) forward_seconds.push_back(path.seconds_of(u));
+  const std::vector<std::size_t> sequence = play_sequence(count, options.ping_pong);
+  const std::vector<float> times = sequence_times(forward_seconds, sequence);
+  for (std::size_t k : sequence) keyframe_t.push_back(tinygltf::Value(target_t[k]));
   const int time_view = buffer.add_view(times, 0);
   const int time_accessor = buffer.add_accessor(time_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
                                                 times.size(), {times.front()}, {times.back()});
-  // Weights: count x count values, zero but for keyframe k's own target (sparse).
+  // Weights: one row of `count` values per animation keyframe, zero but for the
+  // keyframe's own target (sparse).
   std::vector<std::uint32_t> sparse_indices;
-  std::vector<float> ones(count, 1.0f);
-  for (std::size_t k = 0; k < count; ++k) sparse_indices.push_back(static_cast<std::uint32_t>(k * count + k));
+  std::vector<float> ones(sequence.size(), 1.0f);
+  for (std::size_t s = 0; s < sequence.size(); ++s) {
+    sparse_indices.push_back(static_cast<std::uint32_t>(s * count + sequence[s]));
+  }
   const int index_view = buffer.add_view(sparse_indices, 0);
   const int value_view = buffer.add_view(ones, 0);
   tinygltf::Accessor weights;
   weights.bufferView = -1;
   weights.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   weights.type = TINYGLTF_TYPE_SCALAR;
-  weights.count = count * count;
+  weights.count = sequence.size() * count;
   weights.sparse.isSparse = true;
-  weights.sparse.count = static_cast<int>(count);
+  weights.sparse.count = static_cast<int>(sequence.size());
   weights.sparse.indices.bufferView = index_view;
   weights.sparse.indices.byteOffset = 0;
   weights.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
@@ -300,8 +384,6 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   channel.target_path = "weights";
   animation.channels.push_back(channel);
   model.animations.push_back(animation);
-  report.panels = mesh.faces.size();
-  report.keyframes = count;
 }
 
 /// JSON as a glTF extras value (numbers that are whole stay integers).
@@ -359,6 +441,8 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   const int index_view = buffer.add_view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
   const int index_accessor =
       buffer.add_accessor(index_view, 0, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, 6, {0}, {3});
+  // A panel with two coincident corners (welded: one mesh vertex) is the triangle it is.
+  std::map<std::vector<std::uint16_t>, int> triangle_accessors;
   std::vector<float> vertex_data;
   vertex_data.reserve(tree.panels() * 12);
   for (std::size_t f = 0; f < tree.panels(); ++f) {
@@ -380,7 +464,24 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     tinygltf::Primitive primitive;
     primitive.attributes["POSITION"] = buffer.add_accessor(vertex_view, f * 48, TINYGLTF_COMPONENT_TYPE_FLOAT,
                                                            TINYGLTF_TYPE_VEC3, 4, lo, hi);
-    primitive.indices = index_accessor;
+    std::vector<std::uint32_t> corners;
+    append_triangles(mesh.faces[f], corners);
+    if (corners.size() == 6) {
+      primitive.indices = index_accessor;
+    } else {
+      std::vector<std::uint16_t> local;
+      for (std::uint32_t c : corners) {
+        local.push_back(static_cast<std::uint16_t>(std::find(mesh.faces[f].begin(), mesh.faces[f].end(), c) - mesh.faces[f].begin()));
+      }
+      auto [it, added] = triangle_accessors.try_emplace(local, 0);
+      if (added) {
+        it->second = buffer.add_accessor(buffer.add_view(local, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER), 0,
+                                         TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_SCALAR, local.size(),
+                                         {static_cast<double>(*std::min_element(local.begin(), local.end()))},
+                                         {static_cast<double>(*std::max_element(local.begin(), local.end()))});
+      }
+      primitive.indices = it->second;
+    }
     primitive.material = static_cast<int>(mesh.face_member[f]);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     tinygltf::Mesh m;
@@ -412,18 +513,11 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
 
   // Animation: keyframe times, per node rotations, per root translations.
   if (!options.static_t) {
-    const double total = path.seconds_of(path.hi);
-    std::vector<std::size_t> sequence;
-    for (std::size_t k = 0; k < keys.t.size(); ++k) sequence.push_back(k);
-    if (options.ping_pong) {
-      for (std::size_t k = keys.t.size() - 1; k-- > 0;) sequence.push_back(k);
-    }
-    std::vector<float> times;
-    for (std::size_t s = 0; s < sequence.size(); ++s) {
-      const double forward = path.seconds_of(keys.t[sequence[s]]);
-      times.push_back(checked(s < keys.t.size() ? forward : 2.0 * total - forward));
-      keyframe_t.push_back(tinygltf::Value(path.t_of(keys.t[sequence[s]])));
-    }
+    std::vector<double> forward_seconds;
+    for (double u : keys.t) forward_seconds.push_back(path.seconds_of(u));
+    const std::vector<std::size_t> sequence = play_sequence(keys.t.size(), options.ping_pong);
+    const std::vector<float> times = sequence_times(forward_seconds, sequence);
+    for (std::size_t k : sequence) keyframe_t.push_back(tinygltf::Value(path.t_of(keys.t[k])));
     const int time_view = buffer.add_view(times, 0);
     const int time_accessor = buffer.add_accessor(time_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR,
                                                   times.size(), {times.front()}, {times.back()});
@@ -472,14 +566,17 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   report.panels = tree.panels();
   report.keyframes = keys.t.size();
   report.max_opening = keys.max_opening;
-  report.opening_t = keys.opening_t;
+  report.max_vertex_error = keys.max_vertex_error;
+  report.vertex_error_t = keys.vertex_error_t;
+  report.tree_depth = tree.depth();
 }
 
 }  // namespace
 
 std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfReport* report) {
   const Assembly& assembly = design.assembly;
-  const AssemblyMesh mesh = panel_mesh(design);
+  AssemblyMesh mesh = panel_mesh(design);
+  mesh.faces = welded_faces(mesh, coincident_vertices(mesh, assembly));
   const MotionPath path = options.cycle ? cycle_path(design, mesh, options) : interval_path(design, mesh, options);
   const double size = assembly.model_size();
   tinygltf::Model model;
@@ -502,13 +599,13 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   figures.tolerance = options.keyframes.relative_tolerance * size;
   figures.model_size = size;
   tinygltf::Value::Array keyframe_t;
-  if (options.morph && !options.static_t) {
+  if (options.morph) {
     build_morph(model, buffer, design, mesh, path, options, figures, keyframe_t);
   } else {
     build_nodes(model, buffer, design, mesh, path, options, figures, keyframe_t);
   }
 
-  if (!options.static_t) figures.opening_t = path.t_of(figures.opening_t);
+  if (!options.static_t) figures.vertex_error_t = path.t_of(figures.vertex_error_t);
   tinygltf::Value::Object phedra;
   phedra["name"] = tinygltf::Value(assembly.name());
   phedra["kind"] = tinygltf::Value(design.kind);
@@ -538,10 +635,18 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     }
     phedra["ping_pong"] = tinygltf::Value(options.ping_pong);
     phedra["keyframe_t"] = tinygltf::Value(keyframe_t);
-    phedra["representation"] = tinygltf::Value(std::string(options.morph ? "morph targets" : "nodes"));
-    phedra[options.morph ? "max_vertex_error" : "max_hinge_opening"] = tinygltf::Value(figures.max_opening);
-    phedra[options.morph ? "vertex_tolerance" : "hinge_tolerance"] = tinygltf::Value(figures.tolerance);
+    // Measured at 15 points of every keyframe interval (absolute, model units).
+    phedra["max_vertex_error"] = tinygltf::Value(figures.max_vertex_error);
+    phedra["max_vertex_error_t"] = tinygltf::Value(figures.vertex_error_t);
+    phedra["vertex_tolerance"] = tinygltf::Value(figures.tolerance);
+    if (!options.morph) {
+      phedra["max_hinge_opening"] = tinygltf::Value(figures.max_opening);
+      phedra["hinge_tolerance"] = tinygltf::Value(figures.tolerance);
+    }
   }
+  phedra["representation"] = tinygltf::Value(std::string(options.morph ? "morph targets" : "nodes"));
+  phedra["panels"] = tinygltf::Value(static_cast<int>(figures.panels));
+  if (!options.morph) phedra["tree_depth"] = tinygltf::Value(static_cast<int>(figures.tree_depth));
   // The check figures over the interval, relative to the model size, for viewers.
   const AssemblyCheckReport check = check_assembly(assembly, {});
   tinygltf::Value::Object check_figures;
@@ -555,7 +660,10 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   if (!options.buildability.is_null()) phedra["buildability"] = to_value(options.buildability);
   tinygltf::Value::Object extras;
   extras["phedra"] = tinygltf::Value(phedra);
+  // Where clients read it: three.js keeps asset.extras in parser.json; Blender's
+  // importer drops it but keeps scenes[0].extras as the scene's custom properties.
   model.asset.extras = tinygltf::Value(extras);
+  model.scenes[0].extras = tinygltf::Value(extras);
 
   tinygltf::TinyGLTF writer;
   std::ostringstream out;

@@ -2,6 +2,7 @@
 
 #include "phedra/interval_check.h"
 
+#include <algorithm>
 #include <map>
 
 namespace phedra {
@@ -35,6 +36,21 @@ double opening(const PanelTree& tree, const std::vector<RigidPose>& local,
   }
   return worst;
 }
+
+/// Largest distance of a panel corner (as opening() last placed them) from its exact place.
+double vertex_error(const PanelTree& tree, const OpeningScratch& scratch, const Points& truth) {
+  double worst = 0.0;
+  for (std::size_t f = 0; f < tree.panels(); ++f) {
+    for (int k = 0; k < 4; ++k) worst = std::max(worst, (scratch.corners[f][k] - truth[tree.face(f)[k]]).norm());
+  }
+  return worst;
+}
+
+/// What an interval is judged by: the hinge opening and the vertex error, and where.
+struct Deviation {
+  double opening = 0.0, error = 0.0, opening_t = 0.0, error_t = 0.0;
+  double worst() const { return std::max(opening, error); }
+};
 
 /// Keeps consecutive quaternions in one hemisphere, so that interpolation takes the short way.
 void align_signs(const std::vector<RigidPose>& previous, std::vector<RigidPose>& next) {
@@ -83,32 +99,43 @@ Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(dou
   std::vector<std::pair<double, double>> pending;
   for (std::size_t k = 0; k + 1 < initial.size(); ++k) pending.push_back({initial[k], initial[k + 1]});
   double settled = 0.0;
-  // The poses interpolated at 1/4, 1/2 and 3/4 of [a, b] (as slerp and lerp
-  // would give them, keyframes being sign-aligned), and scratch.
   std::vector<RigidPose> half, quarter;
   OpeningScratch scratch;
-  auto measure = [&](double a, double b, double& where) {
-    double worst = 0.0;
+  // The deviations of the poses interpolated at fraction s of [a, b].
+  auto deviation_at = [&](const std::vector<RigidPose>& poses, double t, Deviation& d) {
+    const double o = opening(tree, poses, groups, scratch);
+    const double e = vertex_error(tree, scratch, positions(t));
+    if (o > d.opening) d.opening = o, d.opening_t = t;
+    if (e > d.error) d.error = e, d.error_t = t;
+  };
+  // At 1/4, 1/2 and 3/4 (as slerp and lerp give them, keyframes being sign-aligned).
+  auto coarse = [&](double a, double b) {
+    Deviation d;
     const std::vector<RigidPose>& pa = frames.at(a);
     const std::vector<RigidPose>& pb = frames.at(b);
     halfway_poses(pa, pb, half);
     for (double s : {0.25, 0.5, 0.75}) {
       if (s != 0.5) halfway_poses(s < 0.5 ? pa : half, s < 0.5 ? half : pb, quarter);
-      const double o = opening(tree, s == 0.5 ? half : quarter, groups, scratch);
-      if (o > worst) {
-        worst = o;
-        where = a + s * (b - a);
-      }
+      deviation_at(s == 0.5 ? half : quarter, a + s * (b - a), d);
     }
-    return worst;
+    return d;
+  };
+  // At k/16, k = 1..15: what the interval is judged by.
+  auto fine = [&](double a, double b) {
+    Deviation d;
+    for (int k = 1; k < 16; ++k) {
+      const double s = k / 16.0;
+      deviation_at(interpolate_poses(frames.at(a), frames.at(b), s), a + s * (b - a), d);
+    }
+    return d;
   };
   while (!pending.empty()) {
     std::vector<std::pair<double, double>> next;
     for (const auto& [a, b] : pending) {
-      double where = a;
-      const double worst = measure(a, b, where);
+      Deviation d = coarse(a, b);
+      if (d.worst() <= result.tolerance) d = fine(a, b);
       const double mid = 0.5 * (a + b);
-      const bool split = worst > result.tolerance && mid > a && mid < b && frames.size() < options.maximum;
+      const bool split = d.worst() > result.tolerance && mid > a && mid < b && frames.size() < options.maximum;
       if (split) {
         std::vector<RigidPose> poses = tree.local_poses(positions(mid));
         align_signs(frames.at(a), poses);
@@ -117,10 +144,8 @@ Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(dou
         next.push_back({mid, b});
       } else {
         settled += b - a;
-        if (worst > result.max_opening) {
-          result.max_opening = worst;
-          result.opening_t = where;
-        }
+        if (d.opening > result.max_opening) result.max_opening = d.opening, result.opening_t = d.opening_t;
+        if (d.error > result.max_vertex_error) result.max_vertex_error = d.error, result.vertex_error_t = d.error_t;
       }
       if (progress) progress(settled / (hi - lo), frames.size());
     }

@@ -1,5 +1,6 @@
 #include "phedra/panel_tree.h"
 
+#include <algorithm>
 #include <deque>
 #include <map>
 
@@ -43,24 +44,73 @@ PanelTree::PanelTree(const std::vector<Quad>& faces, std::span<const Vec3> refer
       }
     }
   }
+  // Hinge distances from `from` to every face of its component (SIZE_MAX elsewhere), and the faces reached.
+  auto distances = [&](std::size_t from, std::vector<std::size_t>& reached) {
+    std::vector<std::size_t> d(count, SIZE_MAX);
+    d[from] = 0;
+    reached = {from};
+    for (std::size_t i = 0; i < reached.size(); ++i) {
+      for (const auto& [g, edge] : neighbours[reached[i]]) {
+        if (d[g] != SIZE_MAX) continue;
+        d[g] = d[reached[i]] + 1;
+        reached.push_back(g);
+      }
+    }
+    return d;
+  };
   std::vector<bool> seen(count, false);
-  for (std::size_t start = 0; start < count; ++start) {
-    if (seen[start]) continue;
+  for (std::size_t first = 0; first < count; ++first) {
+    if (seen[first]) continue;
+    // The middle of the component: distances from a few extreme faces (the
+    // farthest from the first face, then each time the face farthest from all
+    // extremes so far: the corners of a grid), and the face whose largest
+    // distance to them is smallest. For a grid of panels that is its centre.
+    std::vector<std::size_t> component;
+    distances(first, component);
+    std::vector<std::size_t> nearest(count, SIZE_MAX), farthest(count, 0), total(count, 0);
+    std::size_t next = component.back();
+    for (int k = 0; k < 6; ++k) {
+      std::vector<std::size_t> reached;
+      const std::vector<std::size_t> d = distances(next, reached);
+      for (std::size_t f : component) {
+        nearest[f] = std::min(nearest[f], d[f]);
+        farthest[f] = std::max(farthest[f], d[f]);
+        total[f] += d[f];
+      }
+      next = *std::max_element(component.begin(), component.end(),
+                               [&](std::size_t x, std::size_t y) { return nearest[x] < nearest[y]; });
+      if (nearest[next] == 0) break;  // every face is an extreme already (tiny components)
+    }
+    // The extremes bound each face's eccentricity from below; the best few
+    // candidates get their exact eccentricity (a breadth-first sweep each).
+    std::vector<std::size_t> candidates = component;
+    const std::size_t keep = std::min<std::size_t>(8, candidates.size());
+    std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(keep), candidates.end(),
+                      [&](std::size_t x, std::size_t y) {
+                        return std::pair(farthest[x], total[x]) < std::pair(farthest[y], total[y]);
+                      });
+    std::size_t start = candidates.front(), best = SIZE_MAX;
+    for (std::size_t k = 0; k < keep; ++k) {
+      std::vector<std::size_t> reached;
+      const std::vector<std::size_t> d = distances(candidates[k], reached);
+      if (d[reached.back()] < best) best = d[reached.back()], start = candidates[k];
+    }
     seen[start] = true;
     roots_.push_back(start);
     origin_[start] = reference[faces[start][0]];
-    std::deque<std::size_t> queue{start};
+    std::deque<std::pair<std::size_t, std::size_t>> queue{{start, 1}};
     while (!queue.empty()) {
-      const std::size_t f = queue.front();
+      const auto [f, level] = queue.front();
       queue.pop_front();
       order_.push_back(f);
+      depth_ = std::max(depth_, level);
       for (const auto& [g, edge] : neighbours[f]) {
         if (seen[g]) continue;
         seen[g] = true;
         parent_[g] = f;
         children_[f].push_back(g);
         origin_[g] = 0.5 * (reference[edge.first] + reference[edge.second]);
-        queue.push_back(g);
+        queue.push_back({g, level + 1});
       }
     }
   }

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Exports every shipped preset and checks the files in real clients: the
 # Khronos glTF-Validator (0 errors, 0 warnings), three.js (GLTFLoader +
-# AnimationMixer at every keyframe against `phedra sample`) and the npm `fold`
-# package (FOLD frames).
+# AnimationMixer at every keyframe and halfway between keyframes against
+# `phedra sample`), in both representations (morph targets, the default, and
+# --nodes), and the npm `fold` package (FOLD frames).
 # usage: tests/js/check_exports.sh PHEDRA_BINARY
 set -euo pipefail
 phedra="$1"
@@ -24,14 +25,17 @@ done
 node "$top/tests/js/check_fold.mjs" "${folds[@]}" || status=1
 "$phedra" generate "$top/presets/grid-3x3.json" -o "$out/grid-3x3.gltf" --ping-pong --quiet >/dev/null
 "$phedra" generate "$top/presets/default.json" -o "$out/static.glb" --at 1.0 --quiet >/dev/null
-for name in grid-3x3 merged-tube; do
-  "$phedra" generate "$top/presets/$name.json" -o "$out/$name-morph.glb" --morph --quiet >/dev/null
-  node "$top/tests/js/compare_three.mjs" "$phedra" "$top/presets/$name.json" "$out/$name-morph.glb" || status=1
-  files+=("$out/$name-morph.glb")
+for name in default grid-3x3 merged-tube helix-tube; do
+  "$phedra" generate "$top/presets/$name.json" -o "$out/$name-nodes.glb" --nodes --quiet >/dev/null
+  node "$top/tests/js/compare_three.mjs" "$phedra" "$top/presets/$name.json" "$out/$name-nodes.glb" || status=1
+  files+=("$out/$name-nodes.glb")
 done
+"$phedra" generate "$top/presets/grid-3x3.json" -o "$out/grid-3x3-nodes-ping.gltf" --nodes --ping-pong --quiet >/dev/null
+"$phedra" generate "$top/presets/default.json" -o "$out/static-nodes.glb" --nodes --at 1.0 --quiet >/dev/null
+files+=("$out/grid-3x3-nodes-ping.gltf" "$out/static-nodes.glb")
 # The configuration curve through the flexion limits, both representations.
-"$phedra" generate "$top/presets/default.json" -o "$out/cycle.glb" --cycle --quiet >/dev/null
-"$phedra" generate "$top/presets/anti-parallelogram-tube.json" -o "$out/cycle-morph.gltf" --cycle --morph --quiet >/dev/null
+"$phedra" generate "$top/presets/default.json" -o "$out/cycle.glb" --cycle --nodes --quiet >/dev/null
+"$phedra" generate "$top/presets/anti-parallelogram-tube.json" -o "$out/cycle-morph.gltf" --cycle --quiet >/dev/null
 files+=("$out/grid-3x3.gltf" "$out/static.glb" "$out/cycle.glb" "$out/cycle-morph.gltf")
 node "$top/tests/js/validate_gltf.mjs" "${files[@]}" || status=1
 if [ "$status" -eq 0 ]; then echo "$(( ${#files[@]} + ${#folds[@]} )) passed, 0 failed"; else echo "export client checks failed"; fi

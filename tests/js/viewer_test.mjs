@@ -24,16 +24,19 @@ try {
   if (colours < 10) failures.push(`the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
   // The slider moves the model.
-  const before = await page.evaluate(() => [window.phedraViewer.corner(5, 2), window.phedraViewer.t()]);
+  const before = await page.evaluate(() => [window.phedraViewer.vertex(37), window.phedraViewer.t()]);
   await page.$eval('#slider', (s) => { s.value = 900; s.dispatchEvent(new Event('input')); });
   await page.waitForTimeout(200);
-  const after = await page.evaluate(() => [window.phedraViewer.corner(5, 2), window.phedraViewer.t()]);
+  const after = await page.evaluate(() => [window.phedraViewer.vertex(37), window.phedraViewer.t()]);
   const moved = Math.hypot(...before[0].map((x, i) => x - after[0][i]));
   if (!(moved > 1e-6)) failures.push('the slider did not change the pose');
   if (before[1] === after[1]) failures.push('the slider did not change the shown t');
   // The buildability the command stored in the file.
   const buildability = await page.$eval('#buildability', (e) => e.textContent);
   if (!buildability.startsWith('buildable over the whole flexion interval')) failures.push(`buildability line: "${buildability}"`);
+  // The panels counted as the design has them (one morph mesh holds all 216).
+  const status = await page.$eval('#status', (e) => e.textContent);
+  if (!status.startsWith('216 panels (morph targets)')) failures.push(`status line: "${status}"`);
   if (errors.length) failures.push(`console errors: ${errors.join(' | ')}`);
   console.log(`viewer: ${colours} colours, corner moved ${moved.toExponential(3)}, t ${before[1]} -> ${after[1]}`);
 } finally {

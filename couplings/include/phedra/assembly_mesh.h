@@ -45,6 +45,20 @@ enum class SharedWalls {
 /// Shared vertices welded, unused vertices dropped, shared walls kept once or removed.
 AssemblyMesh welded_mesh(const Assembly& assembly, SharedWalls walls);
 
+/// For each mesh vertex, the lowest-numbered vertex at its place throughout the
+/// motion (itself when none): members' vertices that coincide at every t (a
+/// boundary column whose two apex rows meet), found at t*, both flexion limits
+/// and two inner samples within 1e-9 of the model size. Exports write faces
+/// through it (welded_faces) so that no edge has zero length.
+std::vector<std::size_t> coincident_vertices(const AssemblyMesh& mesh, const Assembly& assembly);
+
+/// The faces with each corner replaced by coincident_vertices' choice; a face
+/// with two corners welded repeats an index: the triangle it is (distinct_corners).
+std::vector<Quad> welded_faces(const AssemblyMesh& mesh, const std::vector<std::size_t>& representative);
+
+/// A face's distinct corners in order (3 for a welded triangle, 4 otherwise).
+std::vector<std::size_t> distinct_corners(const Quad& q);
+
 /// welded_mesh(assembly, SharedWalls::remove).
 AssemblyMesh merged_mesh(const Assembly& assembly);
 

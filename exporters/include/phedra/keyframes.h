@@ -1,9 +1,11 @@
 #pragma once
 // Keyframes for the node animation: the panels' local poses at chosen t, so
 // that interpolating them (slerp of rotations, lerp of root translations) never
-// opens a hinge outside the tree (or a vertex shared between members) by more
-// than a tolerance. Intervals are split at their midpoint until the opening
-// measured at 1/4, 1/2 and 3/4 of every interval is within the tolerance.
+// puts a vertex further than a tolerance from its exact place at the same t
+// (time linear in t), nor opens a hinge outside the tree (or a vertex shared
+// between members) by more. Intervals are split at their midpoint until both
+// measured at 1/4, 1/2 and 3/4 of every interval are within the tolerance; then
+// every interval is measured again at 15 points (k/16) and split where needed.
 
 #include "phedra/panel_tree.h"
 
@@ -26,6 +28,8 @@ struct Keyframes {
   std::vector<std::vector<RigidPose>> local;  ///< per keyframe, per panel
   double max_opening = 0.0;                   ///< largest opening found between keyframes (absolute)
   double opening_t = 0.0;                     ///< where
+  double max_vertex_error = 0.0;              ///< largest distance of a vertex from its exact place (absolute)
+  double vertex_error_t = 0.0;                ///< where
   double tolerance = 0.0;                     ///< absolute
 };
 

@@ -24,8 +24,9 @@ struct RigidPose {
 class PanelTree {
  public:
   /// `faces` index `reference` (positions at t*). Faces that share an edge are
-  /// hinged; every connected component becomes one tree (breadth first from its
-  /// first face).
+  /// hinged; every connected component becomes one tree, breadth first from its
+  /// middle (the face halfway along a longest shortest path: the shallowest tree
+  /// up to one level, so float32 poses compose over half the chain).
   PanelTree(const std::vector<Quad>& faces, std::span<const Vec3> reference);
 
   std::size_t panels() const { return parent_.size(); }
@@ -33,6 +34,10 @@ class PanelTree {
   std::size_t parent(std::size_t panel) const { return parent_[panel]; }
   const std::vector<std::size_t>& children(std::size_t panel) const { return children_[panel]; }
   const std::vector<std::size_t>& roots() const { return roots_; }
+  /// The face's mesh vertices.
+  const Quad& face(std::size_t panel) const { return faces_[panel]; }
+  /// Levels of the deepest tree (1 for a single panel).
+  std::size_t depth() const { return depth_; }
   /// Panels in breadth-first order (parents before children).
   const std::vector<std::size_t>& order() const { return order_; }
   /// The node's origin at t*: a point of its hinge with the parent (the root: its first vertex).
@@ -57,6 +62,7 @@ class PanelTree {
   std::vector<std::size_t> parent_;
   std::vector<std::vector<std::size_t>> children_;
   std::vector<std::size_t> roots_, order_;
+  std::size_t depth_ = 0;
   std::vector<Vec3> origin_;
   std::vector<std::array<Vec3, 4>> local_;
   std::vector<std::array<int, 3>> frame_corners_;  ///< best-conditioned corners for the panel's frame
