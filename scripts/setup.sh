@@ -2,7 +2,8 @@
 # Installs what phedra needs from Debian packages, only what is missing
 # (chromium runs the viewer's browser test; emscripten and node-acorn build the
 # browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
-# software WebGL renderer bench/designer.mjs measures), then the npm packages of web/
+# software WebGL renderer bench/designer.mjs measures; Blender imports and plays
+# the glTF exports in tests/blender), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -14,6 +15,7 @@ packages=(
   catch2 libbenchmark-dev libnlopt-cxx-dev
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
+  blender
 )
 
 missing=()

@@ -95,14 +95,18 @@ double chord_error(const std::function<Points(double)>& positions, double a, con
 /// Keyframes for morph targets: vertex positions interpolate linearly, so an
 /// interval is split at its midpoint until the chord error at 1/4, 1/2, 3/4 and
 /// then at k/16 (k = 1..15) is within tolerance (or `maximum` keyframes are reached).
+struct MorphErrors {
+  double worst = 0.0, worst_t = 0.0;  ///< over intervals wide enough to split
+  double narrow = 0.0, narrow_width = 0.0;  ///< over intervals left above the tolerance at the minimum spacing
+};
+
 std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
-                                          double tolerance, std::size_t initial, std::size_t maximum, double& worst,
-                                          double& worst_t) {
+                                          double tolerance, std::size_t initial, std::size_t maximum,
+                                          double minimum_spacing, MorphErrors& errors) {
   std::map<double, Points> frames;
   for (double t : interval_samples(lo, hi, std::min(initial, maximum))) frames[t] = positions(t);
   std::vector<std::pair<double, double>> pending;
   for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) pending.push_back({it->first, std::next(it)->first});
-  worst = 0.0;
   while (!pending.empty()) {
     std::vector<std::pair<double, double>> next;
     for (const auto& [a, b] : pending) {
@@ -117,13 +121,17 @@ std::map<double, Points> morph_keyframes(const std::function<Points(double)>& po
                             where);
       }
       const double mid = 0.5 * (a + b);
-      if (error > tolerance && mid > a && mid < b && frames.size() < maximum) {
+      const bool wide = b - a >= 2.0 * minimum_spacing * (hi - lo);
+      if (error > tolerance && wide && mid > a && mid < b && frames.size() < maximum) {
         frames[mid] = positions(mid);
         next.push_back({a, mid});
         next.push_back({mid, b});
-      } else if (error > worst) {
-        worst = error;
-        worst_t = where;
+      } else if (!wide && error > tolerance) {
+        errors.narrow = std::max(errors.narrow, error);
+        errors.narrow_width += b - a;
+      } else if (error > errors.worst) {
+        errors.worst = error;
+        errors.worst_t = where;
       }
     }
     pending = std::move(next);
@@ -271,10 +279,15 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   const Assembly& assembly = design.assembly;
   std::map<double, Points> frames;
   if (!options.static_t) {
+    MorphErrors errors;
     frames = morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
                              std::max(options.keyframes.initial, path.minimum_keyframes),
-                             std::min(options.max_morph_targets, options.keyframes.maximum), report.max_vertex_error,
-                             report.vertex_error_t);
+                             std::min(options.max_morph_targets, options.keyframes.maximum),
+                             options.keyframes.minimum_spacing, errors);
+    report.max_vertex_error = errors.worst;
+    report.vertex_error_t = errors.worst_t;
+    report.narrow_vertex_error = errors.narrow;
+    report.narrow_seconds = errors.narrow_width / (path.hi - path.lo) * path.seconds_of(path.hi);
   }
   const Points base = path.positions(options.static_t ? *options.static_t : path.rest);
   auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {
@@ -568,6 +581,8 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   report.max_opening = keys.max_opening;
   report.max_vertex_error = keys.max_vertex_error;
   report.vertex_error_t = keys.vertex_error_t;
+  report.narrow_vertex_error = keys.narrow_vertex_error;
+  if (!options.static_t) report.narrow_seconds = keys.narrow_width / (path.hi - path.lo) * path.seconds_of(path.hi);
   report.tree_depth = tree.depth();
 }
 
@@ -639,6 +654,11 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     phedra["max_vertex_error"] = tinygltf::Value(figures.max_vertex_error);
     phedra["max_vertex_error_t"] = tinygltf::Value(figures.vertex_error_t);
     phedra["vertex_tolerance"] = tinygltf::Value(figures.tolerance);
+    // Next to a flexion limit: keyframe intervals at the minimum spacing still above the tolerance.
+    phedra["limit_vertex_error"] = tinygltf::Value(figures.narrow_vertex_error);
+    phedra["limit_seconds"] = tinygltf::Value(figures.narrow_seconds);
+    phedra["minimum_keyframe_spacing_seconds"] =
+        tinygltf::Value(options.keyframes.minimum_spacing * path.seconds_of(path.hi));
     if (!options.morph) {
       phedra["max_hinge_opening"] = tinygltf::Value(figures.max_opening);
       phedra["hinge_tolerance"] = tinygltf::Value(figures.tolerance);

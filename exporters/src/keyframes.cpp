@@ -135,7 +135,8 @@ Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(dou
       Deviation d = coarse(a, b);
       if (d.worst() <= result.tolerance) d = fine(a, b);
       const double mid = 0.5 * (a + b);
-      const bool split = d.worst() > result.tolerance && mid > a && mid < b && frames.size() < options.maximum;
+      const bool wide = b - a >= 2.0 * options.minimum_spacing * (hi - lo);
+      const bool split = d.worst() > result.tolerance && wide && mid > a && mid < b && frames.size() < options.maximum;
       if (split) {
         std::vector<RigidPose> poses = tree.local_poses(positions(mid));
         align_signs(frames.at(a), poses);
@@ -145,7 +146,12 @@ Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(dou
       } else {
         settled += b - a;
         if (d.opening > result.max_opening) result.max_opening = d.opening, result.opening_t = d.opening_t;
-        if (d.error > result.max_vertex_error) result.max_vertex_error = d.error, result.vertex_error_t = d.error_t;
+        if (!wide && d.error > result.tolerance) {
+          result.narrow_vertex_error = std::max(result.narrow_vertex_error, d.error);
+          result.narrow_width += b - a;
+        } else if (d.error > result.max_vertex_error) {
+          result.max_vertex_error = d.error, result.vertex_error_t = d.error_t;
+        }
       }
       if (progress) progress(settled / (hi - lo), frames.size());
     }

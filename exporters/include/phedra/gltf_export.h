@@ -57,6 +57,12 @@ struct GltfReport {
   /// every keyframe interval), and the t where.
   double max_vertex_error = 0.0;
   double vertex_error_t = 0.0;
+  /// Keyframe intervals already as short as KeyframeOptions::minimum_spacing
+  /// allows (next to a flexion limit, where the motion moves as the square root
+  /// of the distance to it) are not split further: their largest vertex error
+  /// (absolute) and their total animation time, apart from max_vertex_error.
+  double narrow_vertex_error = 0.0;
+  double narrow_seconds = 0.0;
   /// Nodes: largest opening of a hinge outside the tree between keyframes (absolute; 0 for morph targets).
   double max_opening = 0.0;
   double tolerance = 0.0;    ///< absolute

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# The glTF exports in Blender (Debian's, headless): every shipped preset's
+# default export, the node representation of two, and a 9900-panel array
+# (tests/data/grid-10x10.json) are imported and played: every keyframe and every
+# whole frame (24 fps) within the file's tolerance of `phedra sample`, the
+# scene metadata and the shape keys named by t (tests/blender/check_gltf.py).
+# The import and frame-change times are printed; bench/blender.sh holds them to
+# the targets.
+# usage: tests/blender/check_blender.sh PHEDRA_BINARY
+set -euo pipefail
+phedra="$1"
+top="$(cd "$(dirname "$0")/../.." && pwd)"
+command -v blender >/dev/null || { echo "blender is not installed (scripts/setup.sh installs it)"; exit 1; }
+out="$(mktemp -d)"
+trap 'rm -rf "$out"' EXIT
+status=0
+passed=0
+check() {  # PRESET FILE [options of check_gltf.py]
+  local line
+  line="$(blender -b --factory-startup --python "$top/tests/blender/check_gltf.py" -- "$phedra" "$@" 2>&1 | grep '^phedra-blender: ' || true)"
+  if [ -z "$line" ]; then
+    echo "$2: Blender did not report (the import failed?)"
+    blender -b --factory-startup --python "$top/tests/blender/check_gltf.py" -- "$phedra" "$@" 2>&1 | tail -20
+    status=1
+    return
+  fi
+  echo "${line#phedra-blender: }"
+  if echo "$line" | grep -q '"failures": \[\]'; then passed=$((passed + 1)); else status=1; fi
+}
+for preset in "$top"/presets/*.json; do
+  name="$(basename "$preset" .json)"
+  [ "$name" = preset.schema ] && continue
+  "$phedra" generate "$preset" -o "$out/$name.glb" --quiet >/dev/null 2>&1
+  check "$preset" "$out/$name.glb"
+done
+for name in default grid-3x3; do
+  "$phedra" generate "$top/presets/$name.json" -o "$out/$name-nodes.glb" --nodes --quiet >/dev/null 2>&1
+  check "$top/presets/$name.json" "$out/$name-nodes.glb"
+done
+"$phedra" generate "$top/tests/data/grid-10x10.json" -o "$out/grid-10x10.glb" --quiet >/dev/null 2>&1
+check "$top/tests/data/grid-10x10.json" "$out/grid-10x10.glb"
+if [ "$status" -eq 0 ]; then echo "$passed passed, 0 failed"; else echo "Blender checks failed"; fi
+exit "$status"
