@@ -228,12 +228,12 @@ TEST_CASE("arrays: a wall two cells share is one panel, numbered as in the expor
 
 TEST_CASE("generate warns when the morph targets cannot keep the tolerance", "[buildability][cli]") {
   ScratchDir dir;
-  const Run r = phedra_cli({"generate", presets + "/default.json", "-o", dir / "c.glb", "--cycle", "--morph"});
+  const Run r = phedra_cli({"generate", presets + "/default.json", "-o", dir / "c.glb", "--cycle", "--morph", "--tolerance", "2e-5"});
   CHECK(r.code == 0);
   CHECK_THAT(r.err, Contains("phedra: warning: between keyframes the file is ") &&
-                        Contains("more than the tolerance 0.001: the morph targets are capped at 250; --nodes"));
+                        Contains("more than the tolerance 2e-05: the morph targets are capped at 250; --nodes"));
   // The node representation keeps it.
-  const Run nodes = phedra_cli({"generate", presets + "/default.json", "-o", dir / "n.glb", "--cycle", "--nodes", "-q"});
+  const Run nodes = phedra_cli({"generate", presets + "/default.json", "-o", dir / "n.glb", "--cycle", "--nodes", "-q", "--tolerance", "2e-5"});
   CHECK(nodes.code == 0);
   CHECK(nodes.err.find("warning: between keyframes") == std::string::npos);
 }

@@ -15,6 +15,8 @@
 #include <nlohmann/json.hpp>
 #include <tiny_gltf.h>
 
+#include <filesystem>
+#include <functional>
 #include <sstream>
 
 using namespace phedra;
@@ -136,7 +138,8 @@ TEST_CASE("FOLD: fold angle signs, frames and assignments", "[exports]") {
   const std::vector<double> ts{d.assembly.t_at_fraction(0), d.assembly.t_star(), d.assembly.t_at_fraction(1)};
   const json fold = json::parse(fold_json(d, ts));
   CHECK(fold["file_spec"] == 1.2);
-  CHECK(fold["file_frames"].size() == 2);
+  CHECK(fold["file_frames"].size() == 3);  // every given t; the key frame is t*
+  CHECK(fold["frame_phedra:t"] == d.assembly.t_star());
   CHECK(fold["faces_vertices"].size() == 80);
   CHECK(fold["vertices_coords"].size() == 88);
   const std::size_t edges = fold["edges_vertices"].size();
@@ -152,6 +155,65 @@ TEST_CASE("FOLD: fold angle signs, frames and assignments", "[exports]") {
   std::size_t flat = 0;
   for (const auto& x : fold["edges_assignment"]) flat += x == "F";
   CHECK(flat == 2 * 2 * 10);  // two junctions, two hinge lines each, ten strips
+}
+
+TEST_CASE("FOLD of every shipped preset: key frame t*, no zero-length edge, connected, signs match", "[exports]") {
+  for (const auto& entry : std::filesystem::directory_iterator(PHEDRA_PRESETS_DIR)) {
+    const std::string name = entry.path().stem().string();
+    if (entry.path().extension() != ".json" || name == "preset.schema") continue;
+    CAPTURE(name);
+    const Design d = design(name);
+    std::vector<double> ts;
+    for (int k = 0; k <= 20; ++k) ts.push_back(d.assembly.t_at_fraction(k / 20.0));
+    const json fold = json::parse(fold_json(d, ts));
+    CHECK(fold["frame_phedra:t"] == d.assembly.t_star());
+    const double size = d.assembly.model_size();
+    const auto& edges = fold["edges_vertices"];
+    // One connected mesh (arrays: the cells share vertices).
+    const std::size_t n = fold["vertices_coords"].size();
+    std::vector<std::size_t> root(n);
+    for (std::size_t v = 0; v < n; ++v) root[v] = v;
+    std::function<std::size_t(std::size_t)> find = [&](std::size_t v) { return root[v] == v ? v : root[v] = find(root[v]); };
+    for (const auto& e : edges) root[find(e[0].get<std::size_t>())] = find(e[1].get<std::size_t>());
+    std::size_t components = 0;
+    for (std::size_t v = 0; v < n; ++v) components += find(v) == v;
+    CHECK(components == 1);
+    std::vector<json> states{fold};
+    for (const auto& f : fold["file_frames"]) states.push_back(f);
+    std::vector<double> previous;
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      const auto& v = states[k]["vertices_coords"];
+      double shortest = INFINITY;
+      for (const auto& e : edges) {
+        const auto& a = v[e[0].get<std::size_t>()];
+        const auto& b = v[e[1].get<std::size_t>()];
+        shortest = std::min(shortest, std::hypot(a[0].get<double>() - b[0].get<double>(), a[1].get<double>() - b[1].get<double>(),
+                                                 a[2].get<double>() - b[2].get<double>()));
+      }
+      CHECK(shortest > 1e-6 * size);
+      const auto& angles = states[k]["edges_foldAngle"];
+      const auto& assignment = states[k]["edges_assignment"];
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        const double angle = angles[e].get<double>();
+        const std::string a = assignment[e].get<std::string>();
+        if (a == "F" || a == "B") CHECK(angle == 0.0);
+        if (a == "V") CHECK(angle > 0.0);
+        if (a == "M") CHECK(angle < 0.0);
+      }
+    }
+    // Frames in increasing t: no hinge jumps from one sign to the other at +-180.
+    for (std::size_t k = 2; k < states.size(); ++k) {
+      const auto& a = states[k - 1]["edges_foldAngle"];
+      const auto& b = states[k]["edges_foldAngle"];
+      for (std::size_t e = 0; e < edges.size(); ++e) CHECK(std::abs(a[e].get<double>() - b[e].get<double>()) < 180.0);
+    }
+  }
+  // default.json: the two vertices its boundary column puts at one place are one, its two panels triangles.
+  const json fold = json::parse(fold_json(design("default"), {design("default").assembly.t_star()}));
+  std::size_t triangles = 0;
+  for (const auto& f : fold["faces_vertices"]) triangles += f.size() == 3;
+  CHECK(triangles == 2);
+  CHECK(fold["vertices_coords"].size() == 70);
 }
 
 TEST_CASE("OBJ and PLY read back with OpenMesh", "[exports]") {

@@ -275,7 +275,9 @@ TEST_CASE("generate --no-self-intersection restricts every export to the free in
   std::ifstream in(dir / "g.fold");
   const nlohmann::json doc = nlohmann::json::parse(in);
   CHECK_THAT(fold.out, Contains("intersection-free interval ["));
-  CHECK(doc["frame_phedra:t"].get<double>() == Approx(r.free_lower));
+  CHECK(doc["frame_phedra:t"].get<double>() == Approx(load_design(grid).assembly.t_star()));  // the key frame
+  REQUIRE(doc["file_frames"].size() == 3);
+  CHECK(doc["file_frames"][0]["frame_phedra:t"].get<double>() == Approx(r.free_lower));
   // glTF: the animated interval is recorded in the extras.
   const Run glb = phedra_cli({"generate", grid, "-o", (dir / "g.gltf").string(), "--no-self-intersection", "-q"});
   REQUIRE(glb.code == 0);

@@ -102,11 +102,13 @@ struct MorphErrors {
 
 std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
                                           double tolerance, std::size_t initial, std::size_t maximum,
-                                          double minimum_spacing, MorphErrors& errors) {
+                                          double minimum_spacing, MorphErrors& errors,
+                                          const KeyframeProgress& progress) {
   std::map<double, Points> frames;
   for (double t : interval_samples(lo, hi, std::min(initial, maximum))) frames[t] = positions(t);
   std::vector<std::pair<double, double>> pending;
   for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) pending.push_back({it->first, std::next(it)->first});
+  double settled = 0.0;
   while (!pending.empty()) {
     std::vector<std::pair<double, double>> next;
     for (const auto& [a, b] : pending) {
@@ -126,13 +128,17 @@ std::map<double, Points> morph_keyframes(const std::function<Points(double)>& po
         frames[mid] = positions(mid);
         next.push_back({a, mid});
         next.push_back({mid, b});
-      } else if (!wide && error > tolerance) {
-        errors.narrow = std::max(errors.narrow, error);
-        errors.narrow_width += b - a;
-      } else if (error > errors.worst) {
-        errors.worst = error;
-        errors.worst_t = where;
+      } else {
+        settled += b - a;
+        if (!wide && error > tolerance) {
+          errors.narrow = std::max(errors.narrow, error);
+          errors.narrow_width += b - a;
+        } else if (error > errors.worst) {
+          errors.worst = error;
+          errors.worst_t = where;
+        }
       }
+      if (progress) progress(settled / (hi - lo), frames.size());
     }
     pending = std::move(next);
   }
@@ -283,7 +289,7 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     frames = morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
                              std::max(options.keyframes.initial, path.minimum_keyframes),
                              std::min(options.max_morph_targets, options.keyframes.maximum),
-                             options.keyframes.minimum_spacing, errors);
+                             options.keyframes.minimum_spacing, errors, options.progress);
     report.max_vertex_error = errors.worst;
     report.vertex_error_t = errors.worst_t;
     report.narrow_vertex_error = errors.narrow;

@@ -145,12 +145,12 @@ Keyframes choose_keyframes(const PanelTree& tree, const std::function<Points(dou
         next.push_back({mid, b});
       } else {
         settled += b - a;
-        if (d.opening > result.max_opening) result.max_opening = d.opening, result.opening_t = d.opening_t;
-        if (!wide && d.error > result.tolerance) {
-          result.narrow_vertex_error = std::max(result.narrow_vertex_error, d.error);
+        if (!wide && d.worst() > result.tolerance) {
+          result.narrow_vertex_error = std::max(result.narrow_vertex_error, d.worst());
           result.narrow_width += b - a;
-        } else if (d.error > result.max_vertex_error) {
-          result.max_vertex_error = d.error, result.vertex_error_t = d.error_t;
+        } else {
+          if (d.opening > result.max_opening) result.max_opening = d.opening, result.opening_t = d.opening_t;
+          if (d.error > result.max_vertex_error) result.max_vertex_error = d.error, result.vertex_error_t = d.error_t;
         }
       }
       if (progress) progress(settled / (hi - lo), frames.size());

@@ -1,9 +1,13 @@
 #pragma once
-// FOLD 1.2 (https://github.com/edemaine/fold) of a design: the mesh with its
-// vertices at the first t, and the motion as `file_frames` that inherit the
-// topology (`frame_inherit`) and give `vertices_coords`, `edges_foldAngle`
-// (degrees; positive valley, negative mountain) and `edges_assignment` (M, V,
-// F for flat hinges, B for boundary edges) at each further t.
+// FOLD 1.2 (https://github.com/edemaine/fold) of a design: the key frame is the
+// design configuration t*, and the motion is `file_frames` (one per given t)
+// that inherit the topology (`frame_inherit`) and give `vertices_coords`,
+// `edges_foldAngle` (degrees; positive valley, negative mountain; exactly 0 for
+// F) and `edges_assignment` (M, V, F for flat hinges, B for boundary edges).
+// Vertices that coincide over the whole motion are one vertex (no zero-length
+// edge; such a panel is a triangle); shared walls of arrays are one face with
+// welded vertices (one connected mesh); a hinge at +-180 keeps the sign it has
+// next to it towards t*, so angles are continuous and match the assignment.
 
 #include "phedra/design.h"
 

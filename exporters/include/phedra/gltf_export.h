@@ -43,7 +43,7 @@ struct GltfOptions {
   bool morph = true;
   std::size_t max_morph_targets = 250;
   KeyframeOptions keyframes;
-  KeyframeProgress progress;  ///< called while the keyframes are chosen (node representation)
+  KeyframeProgress progress;  ///< called while the keyframes are chosen
   /// Stored as extras.phedra.buildability when not null
   /// (BuildabilityReport::file_json()): what every export says about the design.
   nlohmann::json buildability;

@@ -36,8 +36,9 @@ struct Keyframes {
   double opening_t = 0.0;                     ///< where
   double max_vertex_error = 0.0;              ///< largest distance of a vertex from its exact place (absolute)
   double vertex_error_t = 0.0;                ///< where
-  /// The same inside intervals left above the tolerance because they are
-  /// already as short as `minimum_spacing` allows (next to a flexion limit), and their total width.
+  /// The larger of vertex error and opening inside intervals left above the
+  /// tolerance because they are already as short as `minimum_spacing` allows
+  /// (next to a flexion limit), and their total width; the figures above leave them out.
   double narrow_vertex_error = 0.0;
   double narrow_width = 0.0;
   double tolerance = 0.0;                     ///< absolute
