@@ -9,6 +9,7 @@
 #include "support.h"
 #include "buildability_warning.h"
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -49,6 +50,46 @@ nlohmann::json direction_json(const FlexDirection& f) {
           {"strip_folds", f.strip_folds},
           {"reach", f.folds ? nlohmann::json(f.reach) : nlohmann::json(nullptr)},
           {"flat_at_reach", f.folds && f.flat_at_reach}};
+}
+
+/// The chosen strips turn a crease past the fully folded state before the
+/// requested fraction: nothing is written (its sign would contradict its
+/// assignment and its panels pass through each other); says which creases and
+/// up to which fraction the motion is consistent.
+void refuse_fold_through(Context& context, const DevelopedPattern& pattern, const std::vector<int>& fold,
+                         const DevelopOptions& o, const CreasePattern& creases, double span) {
+  auto consistent = [&](double fraction) {
+    const double t = pattern.t_star() + fraction * span, t_near = pattern.t_star() + 1e-3 * fraction * span;
+    try {
+      return crease_pattern(pattern, fold, t_near, t).contradicted.empty();
+    } catch (const Error&) {
+      return false;
+    }
+  };
+  double good = 0.0, bad = o.fraction;
+  for (int step = 0; step < 40; ++step) {
+    const double middle = 0.5 * (good + bad);
+    (consistent(middle) ? good : bad) = middle;
+  }
+  std::string list;
+  for (std::size_t k = 0; k < creases.contradicted.size(); ++k) {
+    const std::size_t e = creases.contradicted[k];
+    if (k == 6) {
+      list += " (and " + std::to_string(creases.contradicted.size() - 6) + " more)";
+      break;
+    }
+    list += (k ? ", " : "") + std::to_string(e) + " (" + std::string(1, creases.assignment[e]) + ", " +
+            format_number(creases.fold_angle[e]) + " deg at fraction " + format_number(o.fraction) + ")";
+  }
+  const std::string choices = o.fold.empty() ? std::string(pattern.strips(), '+') : o.fold;
+  context.err << "phedra: " << o.pattern << ": with strip choices " << choices << " crease"
+              << (creases.contradicted.size() > 1 ? "s " : " ") << list
+              << " turn past the fully folded state (+-180 deg) before fraction " << format_number(o.fraction)
+              << " of the motion: their panels pass through each other and their fold angles would contradict their "
+                 "mountain/valley assignment. Nothing written. The motion is consistent up to fraction "
+              << format_number(good) << " (--fraction " << format_number(std::floor(good * 1000.0) / 1000.0)
+              << "); other --fold choices may fold further.\n";
+  context.exit_code = static_cast<int>(ExitCode::check_failed);
 }
 
 }  // namespace
@@ -132,6 +173,10 @@ void add_develop_command(CLI::App& app, Context& context) {
     const double span = chosen->reach - pattern.t_star();
     const double t = pattern.t_star() + o->fraction * span, t_near = pattern.t_star() + 1e-3 * o->fraction * span;
     const CreasePattern creases = crease_pattern(pattern, fold, t_near, t);
+    if (!creases.contradicted.empty()) {
+      refuse_fold_through(context, pattern, fold, *o, creases, span);
+      return;
+    }
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
       std::string text;

@@ -176,8 +176,17 @@ TEST_CASE("random patterns: the exact test agrees with the motion, the criterion
 TEST_CASE("phedra develop: files, no flex, and one error per bad input", "[developed][cli]") {
   const fs::path dir = fs::temp_directory_path() / ("phedra-develop-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const auto run = phedra_cli({"develop", pattern_file, "--fold", "+-+-", "-o", (dir / "c.svg").string(), "-o",
-                               (dir / "c.fold").string(), "-o", (dir / "folded.json").string()});
+  // +-+- turns two creases past the fully folded state before half the motion:
+  // refused, creases named, nothing written, the consistent fraction said.
+  const auto through = phedra_cli({"develop", pattern_file, "--fold", "+-+-", "-o", (dir / "t.fold").string()});
+  CHECK(through.code == 1);
+  CHECK_THAT(through.err, Contains("creases 16 (M, ") && Contains("23 (V, ") &&
+                              Contains("turn past the fully folded state (+-180 deg) before fraction 0.5") &&
+                              Contains("Nothing written. The motion is consistent up to fraction 0.334"));
+  CHECK(!fs::exists(dir / "t.fold"));
+  const auto run = phedra_cli({"develop", pattern_file, "--fold", "+-+-", "--fraction", "0.3", "-o",
+                               (dir / "c.svg").string(), "-o", (dir / "c.fold").string(), "-o",
+                               (dir / "folded.json").string()});
   REQUIRE(run.code == 0);
   CHECK_THAT(run.out, Contains("t increasing: folds"));
   CHECK_THAT(run.out, Contains("mountain and"));
@@ -192,8 +201,17 @@ TEST_CASE("phedra develop: files, no flex, and one error per bad input", "[devel
   const auto plain = phedra_cli({"develop", pattern_file, "-o", (dir / "plain.json").string()});
   CHECK(plain.err.find("not buildable") == std::string::npos);
   CHECK(phedra_cli({"check", (dir / "plain.json").string()}).code == 0);
+  // Every written crease's fold angle has its assignment's sign (F: exactly 0).
   std::ifstream in(dir / "c.fold");
-  CHECK(json::parse(in)["edges_assignment"].size() > 0);
+  const json creases = json::parse(in);
+  CHECK(creases["edges_assignment"].size() > 0);
+  for (std::size_t e = 0; e < creases["edges_assignment"].size(); ++e) {
+    const std::string a = creases["edges_assignment"][e];
+    const double angle = creases["edges_foldAngle"][e];
+    if (a == "V") CHECK(angle > 0);
+    if (a == "M") CHECK(angle < 0);
+    if (a == "F" || a == "B") CHECK(angle == 0);
+  }
   const auto j = phedra_cli({"develop", pattern_file, "--json"});
   REQUIRE(j.code == 0);
   CHECK(json::parse(j.out)["chosen_direction"] == "up");

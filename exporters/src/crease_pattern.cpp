@@ -69,17 +69,25 @@ CreasePattern crease_pattern(const DevelopedPattern& pattern, const std::vector<
       const Vec3 e = (p[edge.second] - p[edge.first]).normalized();
       return -std::atan2(na.cross(nb).dot(e), na.dot(nb));  // valley > 0
     };
-    c.fold_angle.push_back(angle(*x) * 180.0 / std::numbers::pi);
+    double degrees = angle(*x) * 180.0 / std::numbers::pi;
     const double theta = angle(*near);
     if (theta > flat_tolerance) {
       c.assignment.push_back('V');
       ++c.valleys;
+      if (!(degrees > 0.0)) c.contradicted.push_back(c.edges.size() - 1);
     } else if (theta < -flat_tolerance) {
       c.assignment.push_back('M');
       ++c.mountains;
+      if (!(degrees < 0.0)) c.contradicted.push_back(c.edges.size() - 1);
     } else {
       c.assignment.push_back('F');
+      if (std::abs(degrees) < 1e-6) {
+        degrees = 0.0;  // FOLD 1.2: a flat crease has fold angle 0
+      } else {
+        c.contradicted.push_back(c.edges.size() - 1);
+      }
     }
+    c.fold_angle.push_back(degrees);
   }
   return c;
 }

@@ -27,6 +27,11 @@ struct CreasePattern {
   double t = 0.0;                        ///< the folded state of fold_angle
   double t_assignment = 0.0;             ///< the state just off the flat one that fixed the assignment
   std::size_t mountains = 0, valleys = 0;
+  /// Creases whose fold angle at `t` has the sign opposite to their assignment
+  /// (or an F crease no longer flat): between t_assignment and t the hinge went
+  /// through the fully folded state (+-180 degrees), its panels through each
+  /// other. A pattern with any is not to be written (develop refuses it).
+  std::vector<std::size_t> contradicted;
 };
 
 /// The assignment from the pattern folded to `t_assignment` (just off t*, on a side
