@@ -236,4 +236,19 @@ TEST_CASE("OBJ and PLY read back with OpenMesh", "[exports]") {
     }
     CHECK(worst <= 1e-6 * d.assembly.model_size());
   }
+  // default.json: the two vertices its boundary column puts at one place are
+  // written once; the two panels between them are triangles (still faces 0..55).
+  const Design open = design("default");
+  std::istringstream in(mesh_text(open, open.assembly.t_star(), ".obj"));
+  Mesh mesh;
+  OpenMesh::IO::Options options;
+  REQUIRE(OpenMesh::IO::read_mesh(mesh, in, ".obj", options));
+  CHECK(mesh.n_vertices() == 70);
+  CHECK(mesh.n_faces() == 56);
+  std::size_t triangles = 0;
+  double shortest = INFINITY;
+  for (auto f : mesh.faces()) triangles += mesh.valence(f) == 3;
+  for (auto e : mesh.edges()) shortest = std::min(shortest, static_cast<double>(mesh.calc_edge_length(e)));
+  CHECK(triangles == 2);
+  CHECK(shortest > 1e-6 * open.assembly.model_size());
 }

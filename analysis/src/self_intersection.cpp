@@ -5,6 +5,10 @@
 #include "phedra/number_format.h"
 #include "phedra/panel_nets.h"
 
+#include <exception>
+#ifndef __EMSCRIPTEN__
+#include <thread>
+#endif
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -519,6 +523,33 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
     r.depth_at_t_star = detector.deepest(x);
     return r;
   }
+  // The two sides are independent: on large designs the lower one runs on a
+  // second thread with its own detector (a detector keeps scratch; evaluating
+  // the assembly is thread-safe once its shared vertices are known). Not in
+  // WebAssembly, which is built without threads.
+#ifndef __EMSCRIPTEN__
+  if (r.panels >= 2000) {
+    a.shared_vertices();
+    const CollisionDetector second(design, options);
+    std::exception_ptr failure;
+    std::thread lower([&] {
+      try {
+        r.lower = sweep(second, r.t_lambda, options.samples_per_side, openings, r.free_lower, r.lower_contact);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    try {
+      r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, r.free_upper, r.upper_contact);
+    } catch (...) {
+      lower.join();
+      throw;
+    }
+    lower.join();
+    if (failure) std::rethrow_exception(failure);
+    return r;
+  }
+#endif
   r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, r.free_upper, r.upper_contact);
   r.lower = sweep(detector, r.t_lambda, options.samples_per_side, openings, r.free_lower, r.lower_contact);
   return r;

@@ -28,15 +28,21 @@ std::string mesh_text(const Design& design, double t, const std::string& extensi
   const Assembly& a = design.assembly;
   const AssemblyMesh mesh = panel_mesh(design);
   const Points positions = mesh.positions(a.evaluate(t));
+  // Vertices that coincide over the whole motion are one vertex (the later
+  // copies are not written), and such a panel is the triangle it is: no edge of
+  // zero length.
+  const std::vector<std::size_t> representative = coincident_vertices(mesh, a);
   Mesh out;
-  std::vector<Mesh::VertexHandle> handles;
-  handles.reserve(positions.size());
-  for (const Vec3& p : positions) {
+  std::vector<Mesh::VertexHandle> handles(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v) {
+    if (representative[v] != v) continue;
+    const Vec3& p = positions[v];
     if (!p.allFinite()) throw Error(ExitCode::internal, "refusing to write a non-finite vertex");
-    handles.push_back(out.add_vertex(Mesh::Point(p.x(), p.y(), p.z())));
+    handles[v] = out.add_vertex(Mesh::Point(p.x(), p.y(), p.z()));
   }
-  for (const Quad& q : mesh.faces) {
-    std::vector<Mesh::VertexHandle> face{handles[q[0]], handles[q[1]], handles[q[2]], handles[q[3]]};
+  for (const Quad& q : welded_faces(mesh, representative)) {
+    std::vector<Mesh::VertexHandle> face;
+    for (std::size_t c : distinct_corners(q)) face.push_back(handles[c]);
     if (out.add_face(face).is_valid()) continue;
     // A wall two cells share makes its hinges non-manifold (three panels on an
     // edge): the panel gets its own copies of its corners, at the same places,
