@@ -83,7 +83,9 @@ function checkPreset(name) {
   const check = designer.check(21);
   if (!check.passed || !(check.planarity < 1e-9) || !(check.isometry < 1e-9)) fail(`${name}: check ${JSON.stringify(check)}`);
   const fold = JSON.parse(designer.fold(5));
-  if (fold.file_frames.length !== 4) fail(`${name}: FOLD has ${fold.file_frames.length + 1} frames`);
+  // The key frame at t*, then one frame a requested t.
+  if (fold.file_frames.length !== 5) fail(`${name}: FOLD has ${fold.file_frames.length} frames after the key frame`);
+  if (fold["frame_phedra:t"] !== info.t_star) fail(`${name}: the FOLD key frame is at t = ${fold["frame_phedra:t"]}, not t*`);
   // Buildability: the same verdict, counts, panels and buildable interval as
   // `phedra info` (numbers in the text may differ in the last digit: libm).
   const built = designer.buildability(true, 0, 0);
@@ -116,7 +118,7 @@ for (const [name, morph, cycle] of [["default.json", false, false], ["grid-3x3.j
   const report = await validator.validateBytes(bytes, { uri: "page.glb", externalResourceFunction: () => Promise.reject(new Error("none")) });
   if (report.issues.numErrors || report.issues.numWarnings) fail(`${name}: the page's .glb has ${report.issues.numErrors} errors`);
   const cliFile = path.join(scratch, "cli.glb");
-  run(["generate", file, "-o", cliFile, "-q", ...(morph ? ["--morph"] : []), ...(cycle ? ["--cycle"] : [])]);
+  run(["generate", file, "-o", cliFile, "-q", ...(morph ? [] : ["--nodes"]), ...(cycle ? ["--cycle"] : [])]);
   const json = (b) => {
     const length = new DataView(b.buffer, b.byteOffset).getUint32(12, true);
     return JSON.parse(new TextDecoder().decode(b.subarray(20, 20 + length)));
@@ -124,7 +126,9 @@ for (const [name, morph, cycle] of [["default.json", false, false], ["grid-3x3.j
   const page = json(bytes), cli = json(new Uint8Array(readFileSync(cliFile)));
   const keys = (g) => g.asset.extras.phedra.keyframe_t.length;
   if (page.nodes.length !== cli.nodes.length || page.meshes.length !== cli.meshes.length) fail(`${name}: .glb structure differs`);
-  if (Math.abs(keys(page) - keys(cli)) > 2) fail(`${name}: ${keys(page)} keyframes in the page, ${keys(cli)} from the command`);
+  // Splitting stops where an interval's error crosses the tolerance: rounding
+  // that differs between WebAssembly and native code can split a few more or less.
+  if (Math.abs(keys(page) - keys(cli)) > Math.max(2, 0.05 * keys(cli))) fail(`${name}: ${keys(page)} keyframes in the page, ${keys(cli)} from the command`);
   console.log(`ok ${name} .glb${morph ? " (morph)" : ""}${cycle ? " (cycle)" : ""}: ${bytes.length} bytes, ${keys(page)} keyframes (command: ${keys(cli)}), valid`);
 }
 rmSync(scratch, { recursive: true, force: true });

@@ -274,7 +274,7 @@ try {
   const glb = await api(() => window.phedraDesigner.glbSize());
   check(glb > 1000, `.glb export of ${glb} bytes`);
   const fold = JSON.parse(await api(() => window.phedraDesigner.fold()));
-  check(fold.file_frames?.length === 4, 'FOLD export without its frames');
+  check(fold.file_frames?.length === 5, 'FOLD export without its frames (the key frame at t*, then 5)');
 
   // Sign toggle and mode: still the CLI's verdicts.
   await page.click('#signs button');
