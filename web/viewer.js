@@ -1,18 +1,26 @@
 // phedra viewer: loads /model.glb (written by `phedra generate`), plays its
-// folding animation, and lets a slider scrub it. The motion parameter t shown is
-// the glTF time mapped back through the export's extras (keyframe_t, seconds).
+// folding animation back and forth, and lets the user scrub, step, jump to t*
+// or a limit, type a t, change the speed, fit the view and save a picture.
+// The motion parameter t shown is the glTF time mapped back through the
+// export's extras (keyframe_t; time is linear in t between keyframes).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
+import { addPanelOutlines } from './outline.js';
+import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, motionBox } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
 const { renderer, scene, camera, controls } = createStage();
 
-const format = (x) => (Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(3) : x.toFixed(4));
-let mixer = null, duration = 0, playing = true, info = null, times = [];
+/// 4 significant digits (no 16-digit noise on screen).
+const format = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
+  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : Number(x.toPrecision(4)).toString());
 
+let gltf = null, mixer = null, action = null, info = {}, times = [], duration = 0;
+let position = 0, direction = 1, playing = true, box = null, outlines = { edges: 0, invalid: 0 };
+
+/// t at animation time `seconds`: piecewise linear between keyframes.
 function tAt(seconds) {
-  // Piecewise linear between keyframes, as the animation interpolates.
   const ts = info.keyframe_t;
   if (seconds <= times[0]) return ts[0];
   for (let k = 1; k < times.length; ++k) {
@@ -21,87 +29,221 @@ function tAt(seconds) {
   return ts[ts.length - 1];
 }
 
-function show(seconds) {
-  mixer.setTime(Math.min(seconds, duration));
-  $('t').textContent = format(tAt(seconds));
+/// The first animation time showing t (null when t is not animated).
+function timeOf(t) {
+  const ts = info.keyframe_t;
+  for (let k = 1; k < ts.length; ++k) {
+    const a = ts[k - 1], b = ts[k];
+    if ((t - a) * (t - b) <= 0) return a === b ? times[k] : times[k - 1] + (times[k] - times[k - 1]) * (t - a) / (b - a);
+  }
+  return null;
 }
 
-new GLTFLoader().load('/model.glb', (gltf) => {
-  info = gltf.parser.json.asset.extras?.phedra ?? {};
+function setTime(seconds) {
+  // A LoopOnce action that reached its end pauses itself (clampWhenFinished): wake it.
+  action.paused = false;
+  action.enabled = true;
+  mixer.setTime(Math.min(Math.max(seconds, 0), duration));
+  scene.updateMatrixWorld(true);
+}
+
+/// Shows animation time `seconds`: the pose, the slider, t with its fraction of the interval.
+function show(seconds) {
+  position = Math.min(Math.max(seconds, 0), duration);
+  setTime(position);
+  $('slider').value = Math.round(1000 * position / duration);
+  const t = tAt(position);
+  const fraction = (t - info.t_lambda) / (info.t_mu - info.t_lambda);
+  $('t').textContent = format(t);
+  $('fraction').textContent = `${(100 * fraction).toFixed(1)} % of the flexion interval`;
+}
+
+function setPlaying(on) {
+  playing = on;
+  $('play').textContent = playing ? 'Pause' : 'Play';
+}
+
+/// Frames the whole motion in the part of the canvas the panel leaves free.
+function fit() {
+  if (!box) return;
+  const canvas = renderer.domElement, panel = $('panel').getBoundingClientRect();
+  frameBox(camera, controls, box, { left: panel.right + 8, width: canvas.clientWidth, height: canvas.clientHeight });
+}
+window.addEventListener('resize', fit);
+
+function jumpTo(t) {
+  const seconds = timeOf(t);
+  if (seconds === null) {
+    $('message').textContent = `t = ${format(t)} is not in the animation (it spans [${format(Math.min(...info.keyframe_t))}, ${format(Math.max(...info.keyframe_t))}])`;
+    return false;
+  }
+  $('message').textContent = '';
+  setPlaying(false);
+  show(seconds);
+  return true;
+}
+
+/// The keyframe before (-1) or after (+1) the shown time.
+function step(sign) {
+  setPlaying(false);
+  const eps = 1e-6 * duration;
+  const k = sign > 0 ? times.findIndex((x) => x > position + eps) : times.findLastIndex((x) => x < position - eps);
+  if (k >= 0) show(times[k]);
+}
+
+function savePicture() {
+  renderer.render(scene, camera);
+  const link = document.createElement('a');
+  link.download = `${info.name ?? 'phedra'}.png`;
+  link.href = renderer.domElement.toDataURL('image/png');
+  link.click();
+}
+
+function describeFigures() {
+  const c = info.check;
+  if (!c) return '';
+  const kind = info.kind ?? '';
+  const closed = /tube|grid|assembly|row/.test(kind), members = /grid|assembly|row/.test(kind);
+  const parts = [`planarity ${format(c.planarity)}`, `isometry ${format(c.isometry)}`];
+  if (closed) parts.push(`closure ${format(c.closure)}`);
+  if (members) parts.push(`shared vertices ${format(c.shared_vertices)}`);
+  let text = `check over ${c.samples} samples (relative to the model size): ${parts.join(', ')}`;
+  if (info.max_vertex_error !== undefined) {
+    text += `; between keyframes within ${format(info.max_vertex_error / info.model_size)} of the exact motion`;
+  }
+  return text;
+}
+
+function legend(json) {
+  const materials = json.materials ?? [];
+  if (materials.length < 2) return '';
+  if (materials.length > 12) return `${materials.length} members, one colour each`;
+  return materials.map((m) => {
+    const [r, g, b] = (m.pbrMetallicRoughness?.baseColorFactor ?? [1, 1, 1]).map((x) => Math.round(255 * x));
+    return `<span class="swatch" style="background: rgb(${r},${g},${b})"></span>${m.name}`;
+  }).join(' ');
+}
+
+new GLTFLoader().load('/model.glb', (loaded) => {
+  gltf = loaded;
+  const json = gltf.parser.json;
+  info = json.asset.extras?.phedra ?? {};
   scene.add(gltf.scene);
+  outlines = addPanelOutlines(gltf, info.buildability?.invalid_panels ?? []);
   $('title').textContent = info.name ?? 'phedra';
   $('kind').textContent = info.kind ?? '';
   $('lo').textContent = format(info.t_lambda);
   $('hi').textContent = format(info.t_mu);
   $('tstar').textContent = format(info.t_star);
-  const c = info.check;
-  if (c) {
-    $('figures').textContent = `check over ${c.samples} samples (relative to the model size): planarity ${format(c.planarity)}, ` +
-      `isometry ${format(c.isometry)}, closure ${format(c.closure)}, shared ${format(c.shared_vertices)}` +
-      (info.max_vertex_error !== undefined ? `; between keyframes within ${format(info.max_vertex_error / info.model_size)} of the exact motion` : '');
+  $('figures').textContent = describeFigures();
+  $('legend').innerHTML = legend(json);
+  if (info.animated_interval) {
+    $('restricted').textContent = `animated: the intersection-free part [${format(info.animated_interval[0])}, ${format(info.animated_interval[1])}]`;
   }
   // What the command said of the design when it wrote the file (docs/design.md, Buildable designs).
   if (info.buildability) {
     const b = info.buildability;
-    $('buildability').textContent = b.summary;
+    $('buildability').textContent = b.summary + (outlines.invalid ? ' (invalid panels in red)' : '');
     $('buildability').style.color = b.buildable ? '#a5d6a7' : '#ffcc80';
   }
-  const box = new THREE.Box3().setFromObject(gltf.scene);
-  const centre = box.getCenter(new THREE.Vector3()), size = box.getSize(new THREE.Vector3()).length();
-  camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 0.9).multiplyScalar(size));
-  camera.near = size / 1000; camera.far = size * 100; camera.updateProjectionMatrix();
-  controls.target.copy(centre);
-  if (gltf.animations.length) {
+  const panels = info.panels ?? json.nodes.length;
+  const animated = gltf.animations.length > 0;
+  if (animated) {
     mixer = new THREE.AnimationMixer(gltf.scene);
-    const action = mixer.clipAction(gltf.animations[0]);
+    action = mixer.clipAction(gltf.animations[0]);
     action.setLoop(THREE.LoopOnce);
     action.clampWhenFinished = true;
     action.play();
     duration = gltf.animations[0].duration;
     times = Array.from(gltf.animations[0].tracks[0].times);
-    show(0);
+    // Framing over the whole motion: the shown boxes at (up to 64 of) the keyframes.
+    const every = Math.max(1, Math.ceil(times.length / 64));
+    box = motionBox(gltf.scene, setTime, times.filter((_, k) => k % every === 0 || k === times.length - 1));
+    show(timeOf(info.t_star) ?? 0);
   } else {
-    $('slider').disabled = $('play').disabled = true;
+    box = expandByShownVertices(new THREE.Box3(), gltf.scene);
+    for (const id of ['slider', 'play', 'prev', 'next', 'to-lo', 'to-star', 'to-hi', 'type-t']) $(id).disabled = true;
     $('t').textContent = format(info.t ?? info.t_star);
+    setPlaying(false);
   }
-  const panels = info.panels ?? gltf.parser.json.nodes.length;
-  $('status').textContent = `${panels} panels (${info.representation ?? 'nodes'})` + (duration ? `, ${times.length} keyframes` : ', static');
+  const { grid, cell } = groundGrid(box);
+  scene.add(grid);
+  scene.add(new THREE.AxesHelper(cell).translateX(box.min.x).translateY(box.min.y).translateZ(box.max.z));
+  $('scale').textContent = `grid cells of ${format(cell)} model units; axes x red, y (up) green, z blue, one cell long`;
+  fit();
+  $('status').textContent = `${panels} panels (${info.representation ?? 'nodes'}), ${outlines.edges} edges drawn` +
+    (animated ? `, ${times.length} keyframes, ${format(duration)} s` : ', static');
   window.phedraViewer.ready = true;
 }, undefined, (error) => { $('status').textContent = `cannot load the model: ${error.message ?? error}`; console.error(error); });
 
 $('slider').addEventListener('input', () => {
-  playing = false;
-  $('play').textContent = 'Play';
+  setPlaying(false);
   show(duration * $('slider').value / 1000);
 });
 $('play').addEventListener('click', () => {
-  playing = !playing;
-  $('play').textContent = playing ? 'Pause' : 'Play';
+  // Play from where the slider is; at the end of a one-way run start over.
+  if (!playing && $('loop').value === 'once' && position >= duration) position = 0;
+  setPlaying(!playing);
+});
+$('prev').addEventListener('click', () => step(-1));
+$('next').addEventListener('click', () => step(1));
+$('to-lo').addEventListener('click', () => jumpTo(info.t_lambda));
+$('to-star').addEventListener('click', () => jumpTo(info.t_star));
+$('to-hi').addEventListener('click', () => jumpTo(info.t_mu));
+$('type-t').addEventListener('change', () => {
+  const t = Number($('type-t').value);
+  if ($('type-t').value.trim() === '' || !Number.isFinite(t)) {
+    $('message').textContent = `"${$('type-t').value}" is not a number`;
+    return;
+  }
+  jumpTo(t);
+});
+$('fit').addEventListener('click', fit);
+$('png').addEventListener('click', savePicture);
+window.addEventListener('keydown', (e) => {
+  if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
+  if (e.key === 'f') fit();
+  else if (e.key === ' ') { e.preventDefault(); if (mixer) setPlaying(!playing); }
+  else if (e.key === 'ArrowLeft' && mixer) step(-1);
+  else if (e.key === 'ArrowRight' && mixer) step(1);
 });
 
 const clock = new THREE.Clock();
-let elapsed = 0;
 renderer.setAnimationLoop(() => {
   const dt = clock.getDelta();
   if (mixer && playing) {
-    elapsed = (elapsed + dt) % duration;
-    show(elapsed);
-    $('slider').value = Math.round(1000 * elapsed / duration);
+    let next = position + direction * Number($('speed').value) * dt;
+    const mode = $('loop').value;
+    if (next > duration || next < 0) {
+      if (mode === 'ping-pong') {
+        next = next > duration ? 2 * duration - next : -next;
+        direction = -direction;
+      } else if (mode === 'loop') {
+        direction = 1;
+        next = next > duration ? next - duration : duration + next;
+      } else {
+        next = Math.min(Math.max(next, 0), duration);
+        setPlaying(false);
+      }
+    }
+    show(next);
   }
   controls.update();
   renderer.render(scene, camera);
 });
+
 // For tests and scripts: the world position of a mesh vertex, and the state.
 window.phedraViewer = {
   ready: false,
-  pause() { playing = false; },
+  pause() { setPlaying(false); },
+  play() { setPlaying(true); },
   /// Mesh vertex `index` (as phedra numbers it: `phedra sample`'s order) in
   /// world space, as shown: morph targets applied, or through the panel node
   /// that holds it (extras.vertices).
   vertex(index) {
     let found = null;
     scene.traverse((o) => {
-      if (found || !o.isMesh) return;
+      if (found || !o.isMesh || o.parent?.isMesh) return;
       const ids = o.userData.vertices;
       const local = ids ? ids.indexOf(index) : index;
       const position = o.geometry.getAttribute('position');
@@ -118,4 +260,20 @@ window.phedraViewer = {
     return found;
   },
   t() { return $('t').textContent; },
+  state() { return { position, duration, playing, direction, keyframes: times.length, ...outlines }; },
+  /// The model's extent on screen (normalised device coordinates, -1..1 fills
+  /// the canvas) at animation time `seconds` (default: as shown).
+  screenBox(seconds) {
+    const keep = position;
+    if (seconds !== undefined && mixer) setTime(seconds);
+    const out = { minX: Infinity, maxX: -Infinity, minY: Infinity, maxY: -Infinity };
+    forEachShownVertex(gltf.scene, (p) => {
+      p.project(camera);
+      out.minX = Math.min(out.minX, p.x); out.maxX = Math.max(out.maxX, p.x);
+      out.minY = Math.min(out.minY, p.y); out.maxY = Math.max(out.maxY, p.y);
+    });
+    if (mixer) setTime(keep);
+    return out;
+  },
+  timeOf,
 };

@@ -325,8 +325,17 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   m.name = assembly.name();
   for (std::size_t member = 0; member < assembly.member_count(); ++member) {
     std::vector<std::uint32_t> indices;
+    // Which panels the primitive holds (a member's panels are consecutive) and
+    // which of them are one triangle, for viewers that outline panels.
+    std::size_t first = mesh.faces.size(), count = 0;
+    tinygltf::Value::Array triangles;
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
-      if (mesh.face_member[f] == member) append_triangles(mesh.faces[f], indices);
+      if (mesh.face_member[f] != member) continue;
+      first = std::min(first, f);
+      const std::size_t before = indices.size();
+      append_triangles(mesh.faces[f], indices);
+      if (indices.size() - before == 3) triangles.push_back(tinygltf::Value(static_cast<int>(count)));
+      ++count;
     }
     if (indices.empty()) continue;
     const int view = buffer.add_view(indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
@@ -337,6 +346,11 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     primitive.material = static_cast<int>(member);
     primitive.mode = TINYGLTF_MODE_TRIANGLES;
     for (int target : targets) primitive.targets.push_back({{"POSITION", target}});
+    tinygltf::Value::Object extras;
+    extras["phedra_panels"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(static_cast<int>(first)),
+                                                                     tinygltf::Value(static_cast<int>(count))});
+    extras["phedra_triangles"] = tinygltf::Value(triangles);
+    primitive.extras = tinygltf::Value(extras);
     m.primitives.push_back(primitive);
   }
   if (!targets.empty()) {

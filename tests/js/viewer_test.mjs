@@ -1,47 +1,112 @@
 // Opens the viewer page in headless Chromium (Debian's /usr/bin/chromium, driven
-// by playwright-core): the model renders (the canvas is not blank), no console
-// errors, moving the slider changes the pose and the shown t, and the page says
-// whether the design can be built (the file's extras).
-// usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png
+// by playwright-core) on an exported .glb and checks what a user sees and does:
+// the model renders (the canvas is not blank), no console errors, panel edges
+// drawn, invalid panels in red (as many as the file's buildability names), the
+// whole motion framed (the model inside the canvas at t_lambda, t* and t_mu),
+// the slider moves the pose and t, Play continues from where the slider is,
+// back and forth at the ends, stepping to keyframes, jumping to t* and the
+// limits, a typed t (and a refused one), a PNG saved, and the status line.
+// usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID
 import { canvasColours, launch, serve } from './browser.mjs';
 
-const [phedra, glb, screenshot] = process.argv.slice(2);
+const [phedra, glb, screenshot, panels, invalid] = process.argv.slice(2);
 const { server, address } = await serve(phedra, glb, /http:\/\/127\.0\.0\.1:\d+\//);
 
 const failures = [];
+const check = (ok, message) => { if (!ok) failures.push(message); };
 const browser = await launch();
+let passed = 0;
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 } });
+  const page = await browser.newPage({ viewport: { width: 1000, height: 700 }, acceptDownloads: true });
   const errors = [];
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
   await page.goto(address);
   await page.waitForFunction(() => window.phedraViewer?.ready === true, null, { timeout: 30000 });
-  await page.evaluate(() => window.phedraViewer.pause());
+  const viewer = (f, ...args) => page.evaluate(f, ...args);
+  await viewer(() => window.phedraViewer.pause());
   await page.waitForTimeout(300);
+  const info = await viewer(() => ({ ...window.phedraViewer.state() }));
   // Rendered: the WebGL canvas holds more than the background colour.
   const colours = await canvasColours(page);
-  if (colours < 10) failures.push(`the canvas looks blank (${colours} colours)`);
-  if (screenshot) await page.screenshot({ path: screenshot });
-  // The slider moves the model.
-  const before = await page.evaluate(() => [window.phedraViewer.vertex(37), window.phedraViewer.t()]);
-  await page.$eval('#slider', (s) => { s.value = 900; s.dispatchEvent(new Event('input')); });
-  await page.waitForTimeout(200);
-  const after = await page.evaluate(() => [window.phedraViewer.vertex(37), window.phedraViewer.t()]);
+  check(colours >= 10, `the canvas looks blank (${colours} colours)`);
+  // Legible geometry: edges, and the invalid panels the file names, in red.
+  check(info.edges >= Number(panels), `${info.edges} edges drawn for ${panels} panels`);
+  check(info.invalid === Number(invalid), `${info.invalid} panels drawn red, the file names ${invalid}`);
+  const status = await page.$eval('#status', (e) => e.textContent);
+  check(status.startsWith(`${panels} panels (morph targets)`), `status line: "${status}"`);
+
+  // Framing over the whole motion: inside the canvas (and not a speck) at both limits and t*.
+  const times = await viewer(() => {
+    const v = window.phedraViewer;
+    return [v.timeOf(Number(document.getElementById('lo').textContent)), 0, v.state().duration, v.state().duration / 2];
+  });
+  for (const seconds of times) {
+    const b = await viewer((s) => window.phedraViewer.screenBox(s), seconds);
+    const inside = b.minX >= -1.001 && b.maxX <= 1.001 && b.minY >= -1.001 && b.maxY <= 1.001;
+    check(inside, `at ${seconds} s the model leaves the canvas: ${JSON.stringify(b)}`);
+    check(Math.max(b.maxX - b.minX, b.maxY - b.minY) > 0.25, `at ${seconds} s the model is a speck: ${JSON.stringify(b)}`);
+  }
+
+  // The slider moves the model and t.
+  const pose = () => viewer(() => [window.phedraViewer.vertex(5), window.phedraViewer.t(), window.phedraViewer.state().position]);
+  const before = await pose();
+  await page.$eval('#slider', (s) => { s.value = 300; s.dispatchEvent(new Event('input')); });
+  const after = await pose();
   const moved = Math.hypot(...before[0].map((x, i) => x - after[0][i]));
-  if (!(moved > 1e-6)) failures.push('the slider did not change the pose');
-  if (before[1] === after[1]) failures.push('the slider did not change the shown t');
+  check(moved > 1e-6, 'the slider did not change the pose');
+  check(before[1] !== after[1], 'the slider did not change the shown t');
+  // Play continues from the slider's place.
+  await page.click('#play');
+  await page.waitForTimeout(400);
+  await page.click('#play');
+  const played = (await pose())[2];
+  check(played > after[2] && played < after[2] + 1.5, `Play went from ${after[2]} s to ${played} s, not on from the slider`);
+  // Back and forth: from near the end, playing turns round.
+  await page.$eval('#slider', (s) => { s.value = 990; s.dispatchEvent(new Event('input')); });
+  await page.click('#play');
+  await page.waitForTimeout(600);
+  await page.click('#play');
+  const turned = await viewer(() => window.phedraViewer.state());
+  check(turned.direction === -1 && turned.position < turned.duration, `at the end playback did not turn round: ${JSON.stringify(turned)}`);
+  // Jumps and steps.
+  await page.click('#to-star');
+  const star = await page.$eval('#tstar', (e) => e.textContent);
+  check(await viewer(() => window.phedraViewer.t()) === star, `t* button shows t = ${await viewer(() => window.phedraViewer.t())}, t* is ${star}`);
+  await page.click('#to-lo');
+  check((await page.$eval('#fraction', (e) => e.textContent)).startsWith('0.0 %'), 'the t_lambda button is not at 0 % of the interval');
+  await page.click('#next');
+  const next = await viewer(() => window.phedraViewer.state().position);
+  check(next > 0, 'the next-keyframe button did not move');
+  await page.click('#prev');
+  check(await viewer(() => window.phedraViewer.state().position) === 0, 'the previous-keyframe button did not go back to the first keyframe');
+  // A typed t, and one that is not a number.
+  const target = await viewer(() => { const v = window.phedraViewer; return 0.5 * (Number(document.getElementById('lo').textContent) + Number(document.getElementById('hi').textContent)); });
+  await page.fill('#type-t', String(target));
+  await page.press('#type-t', 'Enter');
+  const typed = Number(await viewer(() => window.phedraViewer.t()));
+  check(Math.abs(typed - target) <= 1e-3 * Math.abs(target) + 1e-3, `typed t = ${target}, shows ${typed}`);
+  await page.fill('#type-t', 'abc');
+  await page.press('#type-t', 'Enter');
+  check((await page.$eval('#message', (e) => e.textContent)).includes('is not a number'), 'a typed non-number is not refused');
+  // A PNG of the view.
+  const [download] = await Promise.all([page.waitForEvent('download'), page.click('#png')]);
+  check(download.suggestedFilename().endsWith('.png'), `saved "${download.suggestedFilename()}"`);
   // The buildability the command stored in the file.
   const buildability = await page.$eval('#buildability', (e) => e.textContent);
-  if (!buildability.startsWith('buildable over the whole flexion interval')) failures.push(`buildability line: "${buildability}"`);
-  // The panels counted as the design has them (one morph mesh holds all 216).
-  const status = await page.$eval('#status', (e) => e.textContent);
-  if (!status.startsWith('216 panels (morph targets)')) failures.push(`status line: "${status}"`);
-  if (errors.length) failures.push(`console errors: ${errors.join(' | ')}`);
-  console.log(`viewer: ${colours} colours, corner moved ${moved.toExponential(3)}, t ${before[1]} -> ${after[1]}`);
+  const buildable = Number(invalid) === 0;
+  check(buildable ? buildability.startsWith('buildable over the whole flexion interval') : buildability.includes('(invalid panels in red)'),
+        `buildability line: "${buildability}"`);
+  await page.click('#to-star');
+  await page.waitForTimeout(200);
+  if (screenshot) await page.screenshot({ path: screenshot });
+  check(!errors.length, `console errors: ${errors.join(' | ')}`);
+  console.log(`viewer ${glb}: ${colours} colours, ${info.edges} edges, ${info.invalid} red, vertex moved ${moved.toExponential(3)}, ` +
+              `t ${before[1]} -> ${after[1]}, played ${after[2].toFixed(2)} -> ${played.toFixed(2)} s`);
+  passed = failures.length ? 0 : 1;
 } finally {
   await browser.close();
   server.kill();
 }
 if (failures.length) { console.log(failures.join('\n')); process.exit(1); }
-console.log('1 passed, 0 failed');
+console.log(`${passed} passed, 0 failed`);
