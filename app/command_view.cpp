@@ -3,6 +3,7 @@
 #include "commands.h"
 #include "phedra/errors.h"
 #include "static_server.h"
+#include "support.h"
 
 #include <filesystem>
 #include <memory>
@@ -39,6 +40,8 @@ void add_view_command(CLI::App& app, Context& context) {
     }
     if (!fs::is_regular_file(o->file)) throw IOError(o->file + ": no such file");
     if (ext == ".json") {
+      // The designer edits presets: validated first, with the errors of every other command.
+      load(context, o->file);
       if (!fs::is_regular_file(fs::path(o->web) / "wasm" / "phedra.mjs")) {
         throw IOError(o->web + "/wasm/phedra.mjs is missing: run `bash scripts/build-wasm.sh` first");
       }

@@ -168,6 +168,37 @@ TEST_CASE("bad input and bad usage: clear message, exit 2, unreadable file: exit
   fs::remove_all(dir);
 }
 
+TEST_CASE("a file that is not a preset is named for what it is, in every command and in view", "[cli]") {
+  const fs::path dir = scratch_directory();
+  const std::string pattern = presets + "/developed/flat-pattern.json";
+  const Run developed = phedra_cli({"info", pattern});
+  CHECK(developed.code == 2);
+  CHECK_THAT(developed.err, Contains("developed: this is a developed (flat) pattern, not a preset: `phedra develop FILE`"));
+  REQUIRE(phedra_cli({"generate", presets + "/default.json", "-o", (dir / "m.glb").string(), "-q"}).code == 0);
+  REQUIRE(phedra_cli({"generate", presets + "/default.json", "-o", (dir / "m.gltf").string(), "-q"}).code == 0);
+  REQUIRE(phedra_cli({"generate", presets + "/default.json", "-o", (dir / "m.json").string(), "--count", "2"}).code == 0);
+  const Run glb = phedra_cli({"info", (dir / "m.glb").string()});
+  CHECK(glb.code == 2);
+  CHECK_THAT(glb.err, Contains("this is a binary glTF file (.glb), not a JSON preset: `phedra view FILE.glb` shows it"));
+  const Run gltf = phedra_cli({"check", (dir / "m.gltf").string()});
+  CHECK(gltf.code == 2);
+  CHECK_THAT(gltf.err, Contains("this is a glTF file, not a preset"));
+  const Run motion = phedra_cli({"sample", (dir / "m.json").string(), "--count", "2"});
+  CHECK(motion.code == 2);
+  CHECK_THAT(motion.err, Contains("this is a motion JSON (written by `phedra sample` or `generate -o X.json`), not a preset"));
+  // FOLD written under a .json name (generate picks the format from .fold only): write one by hand.
+  std::ofstream(dir / "f.json") << R"({"file_spec": 1.2, "vertices_coords": [[0, 0, 0]]})";
+  const Run fold = phedra_cli({"info", (dir / "f.json").string()});
+  CHECK(fold.code == 2);
+  CHECK_THAT(fold.err, Contains("this is a FOLD file, not a preset"));
+  // view validates a preset before serving: the same error, exit 2, no server.
+  const Run view = phedra_cli({"view", (dir / "m.json").string(), "--port", "0", "--requests", "1"});
+  CHECK(view.code == 2);
+  CHECK_THAT(view.err, Contains("this is a motion JSON"));
+  CHECK(view.out.find("designer for") == std::string::npos);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("--help of every command exits 0 and describes it", "[cli]") {
   CHECK_THAT(phedra_cli({"--help"}).out, Contains("Exit codes"));
   CHECK_THAT(phedra_cli({"info", "--help"}).out, Contains("--json"));

@@ -125,7 +125,27 @@ void add_coupling(Design& design, const json& c, const std::string& field) {
 
 }  // namespace
 
+/// Other documents phedra reads or writes, named rather than refused key by key.
+void refuse_other_documents(const json& document) {
+  if (!document.is_object()) return;
+  if (document.contains("developed")) {
+    throw InvalidInputError("developed", "this is a developed (flat) pattern, not a preset: `phedra develop FILE` folds "
+                                         "it and writes the folded preset (docs/presets.md, Developed patterns)");
+  }
+  if (document.contains("samples") && document.contains("labels")) {
+    throw InvalidInputError("", "this is a motion JSON (written by `phedra sample` or `generate -o X.json`), not a "
+                                "preset: give the preset it was made from");
+  }
+  if (document.contains("asset") && document.contains("meshes")) {
+    throw InvalidInputError("", "this is a glTF file, not a preset: `phedra view FILE` shows .glb files");
+  }
+  if (document.contains("file_spec") && document.contains("vertices_coords")) {
+    throw InvalidInputError("", "this is a FOLD file, not a preset");
+  }
+}
+
 Design design_from_json(const json& document) {
+  refuse_other_documents(document);
   const json& preset = preset_object(document);
   if (!preset.is_object()) {
     throw InvalidInputError("", "a preset must be a JSON object, got " + std::string(preset.type_name()));

@@ -151,6 +151,9 @@ ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
 }
 
 json parse_json_text(std::string_view text) {
+  if (text.substr(0, 4) == "glTF") {
+    throw InvalidInputError("", "this is a binary glTF file (.glb), not a JSON preset: `phedra view FILE.glb` shows it");
+  }
   try {
     return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
