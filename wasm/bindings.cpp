@@ -207,6 +207,8 @@ class Designer {
     v.set("name", a.name());
     v.set("kind", design_->kind);
     v.set("t_star", a.t_star());
+    // t is the axis coordinate of this apex of the base (what an edit of it moves t* with).
+    v.set("moving_apex", std::string(a.base().motion_case() == MotionCase::a ? "S_0" : "S_1"));
     v.set("t_lambda", a.flexion_interval().lower.t);
     v.set("t_mu", a.flexion_interval().upper.t);
     v.set("lambda_strip", static_cast<double>(a.flexion_interval().lower.strip));

@@ -110,8 +110,10 @@ const clone = (o) => JSON.parse(JSON.stringify(o));
 const axisOf = (p) => new THREE.Vector3(...(p.axis || [0, 0, 1])).normalize();
 const tOf = (f) => info.t_lambda + f * (info.t_mu - info.t_lambda);
 
-/// Rebuilds the design from `candidate`; on refusal keeps the shown design and reports.
-function apply(candidate, { keepFigures = false } = {}) {
+/// Rebuilds the design from `candidate`; on refusal keeps the shown design and
+/// reports. An accepted edit goes into the undo history (`what` says what it
+/// was) and the slider moves to the new t*, where the surface passes through the handles.
+function apply(candidate, { keepFigures = false, what = 'edit', record = true } = {}) {
   const result = designer.load(JSON.stringify(candidate));
   if (!result.ok) {
     failure = { field: result.field, message: result.message };
@@ -119,12 +121,15 @@ function apply(candidate, { keepFigures = false } = {}) {
     return false;
   }
   failure = null;
+  if (record && preset) remember(preset, what);
+  const before = info ? info.t_star : null;
   preset = candidate;
   showRepair('');  // a new design: an earlier repair's message no longer applies (Repair and Undo say theirs after)
   info = designer.info();
   faces = Uint32Array.from(designer.faces());
   invalidPanels = new Set(Array.from(designer.invalidPanels()));
   collidingPanels = new Set();
+  followTStar(before);
   sizeHandles();
   rebuildGeometry();
   placeHandles();
@@ -134,6 +139,67 @@ function apply(candidate, { keepFigures = false } = {}) {
   showMessage();
   return true;
 }
+
+/// The slider at t* (the input configuration: the surface passes through the
+/// handles); `before`: t* of the previous design, to say when an edit moved it and why.
+function followTStar(before) {
+  fraction = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
+  $('slider').value = String(Math.round(fraction * 1000));
+  const moved = before !== null && Math.abs(before - info.t_star) > 1e-12 * info.model_size;
+  if (moved) {
+    $('tstar-note').textContent = `t* moved from ${format(before)} to ${format(info.t_star)}: t is the axis coordinate ` +
+      `of the moving apex ${info.moving_apex}, and this edit moved it`;
+  } else if (before !== null) {
+    $('tstar-note').textContent = '';
+  }
+}
+
+// --- undo and redo ---------------------------------------------------------------
+// Every accepted edit (a drag counts once, from press to release), repairs and
+// mode switches included: [{preset, what}].
+const history = [], future = [];
+function remember(previous, what) {
+  history.push({ preset: clone(previous), what });
+  if (history.length > 500) history.shift();
+  future.length = 0;
+  updateUndo();
+}
+function updateUndo() {
+  $('undo').disabled = history.length === 0;
+  $('redo').disabled = future.length === 0;
+  $('undo').title = history.length ? `undo the last ${history[history.length - 1].what} (Ctrl+Z)` : 'nothing to undo';
+  $('redo').title = future.length ? `redo the ${future[future.length - 1].what} (Ctrl+Shift+Z)` : 'nothing to redo';
+}
+function undo() {
+  const entry = history.pop();
+  if (!entry) return;
+  const now = clone(preset);
+  if (apply(entry.preset, { record: false })) {
+    future.push({ preset: now, what: entry.what });
+    showRepair(entry.what === 'repair' ? 'repair undone: the previous design is back' : `${entry.what} undone`);
+  } else {
+    history.push(entry);
+  }
+  updateUndo();
+}
+function redo() {
+  const entry = future.pop();
+  if (!entry) return;
+  const now = clone(preset);
+  if (apply(entry.preset, { record: false })) {
+    history.push({ preset: now, what: entry.what });
+    showRepair(`${entry.what} redone`);
+  } else {
+    future.push(entry);
+  }
+  updateUndo();
+}
+window.addEventListener('keydown', (e) => {
+  if (!(e.ctrlKey || e.metaKey) || e.target instanceof HTMLTextAreaElement || e.target instanceof HTMLInputElement) return;
+  const key = e.key.toLowerCase();
+  if (key === 'z' && !e.shiftKey) { e.preventDefault(); undo(); }
+  else if ((key === 'z' && e.shiftKey) || key === 'y') { e.preventDefault(); redo(); }
+});
 
 function rebuildGeometry() {
   const count = info.vertices;
@@ -237,7 +303,8 @@ function sizeHandles() {
 }
 const handleKinds = ['trajectory', 'direction', 'apex'];
 const handleColours = { trajectory: 0xff9800, direction: 0x42a5f5, apex: 0x66bb6a };
-const arrayHeightColour = 0xba68c8;  // heights of further members (grid, row, couplings)
+const arrayHeightColour = 0xba68c8;  // heights of further members (grid u lines, row, couplings)
+const wHeightColour = 0x4dd0e1;      // a grid's w lines
 // kind -> THREE.InstancedMesh; userData.refs[instance] = {key, index}: what Designer.set edits
 const handleMeshes = {};
 const stems = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x42a5f5 }));
@@ -313,7 +380,7 @@ function handlePlaces() {
   if (foot) {
     for (const ref of heightRefs(preset)) {
       places.apex.push({ key: ref.key, index: ref.index, position: foot.clone().addScaledVector(a, ref.value),
-                         colour: ref.base ? handleColours.apex : arrayHeightColour });
+                         colour: ref.base ? handleColours.apex : ref.key === 'grid.w_heights' ? wHeightColour : arrayHeightColour });
       heights.push(ref.value);
     }
     for (let j = 0; j < apexes.length / 3; ++j) heights.push(new THREE.Vector3(apexes[3 * j], apexes[3 * j + 1], apexes[3 * j + 2]).dot(a));
@@ -343,9 +410,11 @@ function placeHandles() {
         mesh.geometry.dispose();
         mesh.dispose();
       }
-      const material = new THREE.MeshStandardMaterial({ color: kind === 'apex' ? 0xffffff : handleColours[kind] });
+      // Drawn over the surface: a handle behind it can still be seen and grabbed.
+      const material = new THREE.MeshStandardMaterial({ color: kind === 'apex' ? 0xffffff : handleColours[kind], depthTest: false });
       mesh = new THREE.InstancedMesh(handleGeometry(kind, list.length), material, list.length);
       mesh.userData.kind = kind;
+      mesh.renderOrder = 10;
       handleMeshes[kind] = mesh;
       handles.add(mesh);
     }
@@ -478,6 +547,12 @@ function updatePanel() {
     $('row-cells').value = String(preset.row.free_heights.length);
     $('row-side').value = String(preset.row.side);
   }
+  // Controls only where they act: apexes are added and removed on open designs.
+  const open = Array.isArray(preset.apex_heights);
+  $('add-apex').hidden = $('remove-apex').hidden = !open;
+  $('remove-apex').disabled = open && preset.apex_heights.length <= 3;
+  $('remove-profile').disabled = preset.trajectory.length <= 2;
+  if (document.activeElement !== $('name')) $('name').value = preset.name ?? '';
   const signs = $('signs');
   signs.textContent = '';
   if (typeof preset.signs === 'string') {
@@ -565,7 +640,6 @@ function scheduleFigures() {
 // The nearest buildable design, found by the same core as `phedra repair`
 // (NLopt compiled to WebAssembly). The search runs on this thread: the status
 // says so first. Its result replaces the design; Undo brings the previous back.
-const undoStack = [];
 const repairSeconds = 10;
 
 function showRepair(text, changes = []) {
@@ -581,7 +655,6 @@ function showRepair(text, changes = []) {
     item.textContent = `${c.field}: ${c.before} → ${c.after} (${what})`;
     list.append(item);
   }
-  $('undo').disabled = undoStack.length === 0;
 }
 
 /// `fixed`: preset fields (JSON pointers) that stay, e.g. the handle a keep-buildable drag held.
@@ -599,9 +672,7 @@ function repairDesign({ fixed = [] } = {}) {
     } else if (!r.found) {
       showRepair(`no buildable design found in ${format(r.seconds)} s: ${r.closest}`);
     } else {
-      const previous = clone(preset);
-      if (apply(JSON.parse(r.preset))) {
-        undoStack.push(previous);
+      if (apply(JSON.parse(r.preset), { what: 'repair' })) {
         const part = r.fraction >= 1 ? '' : ` (over ${Math.round(100 * r.fraction)} % of the way from t* to the limits: the widest part found)`;
         showRepair(`repaired${part}: ${r.changes.length} field${r.changes.length === 1 ? '' : 's'} changed, distance ` +
           `${format(r.distance)} of the model size, ${r.evaluations} designs in ${format(r.seconds)} s. Undo brings the previous design back.`, r.changes);
@@ -611,11 +682,8 @@ function repairDesign({ fixed = [] } = {}) {
 }
 
 $('repair').addEventListener('click', () => repairDesign());
-$('undo').addEventListener('click', () => {
-  const previous = undoStack.pop();
-  if (previous && apply(previous)) showRepair('repair undone: the previous design is back');
-  $('undo').disabled = undoStack.length === 0;
-});
+$('undo').addEventListener('click', undo);
+$('redo').addEventListener('click', redo);
 
 // --- dragging ----------------------------------------------------------------
 const raycaster = new THREE.Raycaster();
@@ -634,8 +702,19 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
   const hit = raycaster.intersectObjects(Object.values(handleMeshes), false)[0];
   if (!hit) return;
   const { key, index } = hit.object.userData.refs[hit.instanceId];
-  const normal = camera.getWorldDirection(new THREE.Vector3());
-  drag = { kind: hit.object.userData.kind, key, index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, handlePosition(key, index)) };
+  const kind = hit.object.userData.kind;
+  const at = handlePosition(key, index);
+  const a = axisOf(preset);
+  // Where the pointer puts the handle: an apex moves along the apex line (the
+  // point of it nearest the pointer's ray), a direction handle in the plane of
+  // its profile's directions (orthogonal to the axis) unless that plane is seen
+  // edge-on, everything else in the plane facing the camera.
+  const facing = camera.getWorldDirection(new THREE.Vector3());
+  const edgeOn = Math.abs(facing.dot(a)) < 0.15;
+  const normal = kind === 'direction' && !edgeOn ? a : facing;
+  drag = { kind, key, index, plane: new THREE.Plane().setFromNormalAndCoplanarPoint(normal, at),
+           line: kind === 'apex' ? { foot: at.clone().addScaledVector(a, -at.dot(a)), axis: a } : null,
+           before: clone(preset) };
   controls.enabled = false;
   renderer.domElement.setPointerCapture(event.pointerId);
   beginDrag();
@@ -643,19 +722,29 @@ renderer.domElement.addEventListener('pointerdown', (event) => {
 
 renderer.domElement.addEventListener('pointermove', (event) => {
   if (!drag) return;
-  const point = rayAt(event).intersectPlane(drag.plane, new THREE.Vector3());
+  const ray = rayAt(event);
+  let point = null;
+  if (drag.line) {
+    point = new THREE.Vector3();
+    const { foot, axis } = drag.line, far = 1e4 * info.model_size;
+    ray.distanceSqToSegment(foot.clone().addScaledVector(axis, -far), foot.clone().addScaledVector(axis, far), null, point);
+  } else {
+    point = ray.intersectPlane(drag.plane, new THREE.Vector3());
+  }
   if (!point) return;
   pending = edited(drag, point);
 });
 
 function release() {
   if (!drag) return;
+  const { before, key, index } = drag;
   drag = null;
   controls.enabled = true;
   if (pending) {
     applyEdit(pending);
     pending = null;
   }
+  if (JSON.stringify(before) !== JSON.stringify(preset)) remember(before, `drag of ${fieldOf({ key, index })}`);
   endDrag();
   settle();
 }
@@ -706,7 +795,9 @@ function applyEdit(edit) {
   } else {
     setAt(preset, edit, edit.key === 'trajectory' || edit.key === 'directions' ? edit.value : edit.value[0]);
   }
+  const before = info.t_star;
   info = designer.info();
+  followTStar(before);
   buildability = null;  // the sweep follows when the drag ends (settle)
   updateInvalidPanels();
   if (collidingPanels.size) {
@@ -780,7 +871,14 @@ for (const id of ['row-cells', 'row-side']) {
   });
 }
 
+// Each mode keeps the design it last had: switching back restores it.
+const modeMemory = {};
 $('mode').addEventListener('change', (e) => {
+  modeMemory[modeOf(preset)] = clone(preset);
+  if (modeMemory[e.target.value]) {
+    if (!apply(clone(modeMemory[e.target.value]), { what: 'mode switch' })) e.target.value = modeOf(preset);
+    return;
+  }
   const c = clone(preset);
   const z = cellZ(c);
   delete c.grid;
@@ -805,7 +903,7 @@ $('mode').addEventListener('change', (e) => {
     c.tube = { type: row ? 'parallelogram' : e.target.value, apex_heights: q };
     if (row) c.row = rowOf(q, Math.max(1, Number($('row-cells').value)), Number($('row-side').value));
   }
-  if (!apply(c)) e.target.value = modeOf(preset);
+  if (!apply(c, { what: 'mode switch' })) e.target.value = modeOf(preset);
 });
 
 $('add-profile').addEventListener('click', () => {
@@ -856,12 +954,34 @@ function download(name, data, type) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 const presetText = () => JSON.stringify(preset, null, 2) + '\n';
-$('save').addEventListener('click', () => download(`${preset.name || 'preset'}.json`, presetText(), 'application/json'));
+let loadedName = null;  // the name of the preset as loaded, to say what an edited design came from
+/// The preset as saved: its name from the name box (the loaded name + "-edited"
+/// once the design changed and no other was typed), its description what the design is now.
+function savedPreset() {
+  const p = clone(preset);
+  const changed = history.length > 0;
+  const typed = $('name').value.trim();
+  p.name = typed && typed !== loadedName ? typed : changed ? `${loadedName || 'design'}-edited` : loadedName || 'design';
+  if (changed) {
+    p.description = `${info.kind}, ${info.faces} panels, t* = ${format(info.t_star)} in [${format(info.t_lambda)}, ` +
+      `${format(info.t_mu)}]; ${statusText()}. Edited in the phedra designer from "${loadedName}".`;
+  }
+  return p;
+}
+$('save').addEventListener('click', () => {
+  const p = savedPreset();
+  download(`${p.name}.json`, JSON.stringify(p, null, 2) + '\n', 'application/json');
+});
+$('name').addEventListener('change', () => {
+  const name = $('name').value.trim();
+  if (name && name !== preset.name) apply({ ...clone(preset), name }, { what: 'rename' });
+});
 $('load').addEventListener('change', async (e) => {
   const file = e.target.files[0];
   if (!file) return;
   try {
-    apply(JSON.parse(await file.text()));
+    const loaded = JSON.parse(await file.text());
+    if (apply(loaded, { what: `load of ${file.name}` })) loadedName = loaded.name ?? file.name.replace(/\.json$/, '');
   } catch (error) {
     failure = { field: '', message: `${file.name}: ${error.message}` };
     showMessage();
@@ -903,7 +1023,8 @@ function frame() {
 }
 
 const initial = await (await fetch('/preset.json')).json();
-if (!apply(initial)) {
+loadedName = initial.name ?? null;
+if (!apply(initial, { record: false })) {
   $('message').textContent = `the preset is refused: ${failure.field}: ${failure.message}`;
 }
 if (info) {

@@ -111,7 +111,6 @@ try {
     const file = path.join(data, 'repairable-tube.json');
     const before = await loadFile(file);
     check(!before.buildable && (await api(() => window.phedraDesigner.invalidPanels())).length === 4, 'the repairable tube has 4 bow-ties');
-    check(await page.$eval('#undo', (e) => e.disabled), 'Undo enabled before any repair');
     await page.click('#repair');
     await page.waitForFunction(() => /^(repaired|no buildable|repair refused)/.test(document.getElementById('repair-result').textContent),
       null, { timeout: 60000 });
@@ -213,6 +212,63 @@ try {
   check(resolution.canvas[0] === fullWidth, `after the drag the canvas is ${resolution.canvas} pixels wide, not ${fullWidth}`);
   check(resolution.ratio >= 0.35 && resolution.ratio <= 1 && resolution.drawCost !== null, `drag resolution ${JSON.stringify(resolution)}`);
 
+  // After an edit the slider is at the new t*, where the surface passes through the handles.
+  {
+    const now = await api(() => window.phedraDesigner.info());
+    const t = await api(() => window.phedraDesigner.t());
+    check(Math.abs(t - now.t_star) <= 1e-3 * (now.t_mu - now.t_lambda), `after the drag t = ${t}, t* = ${now.t_star}`);
+  }
+  // Undo and redo the drag with the keys.
+  await page.keyboard.press('Control+z');
+  const undonePoint = await api(() => window.phedraDesigner.preset().trajectory[3]);
+  check(JSON.stringify(undonePoint) === JSON.stringify(beforePoint), `Ctrl+Z gives trajectory[3] = ${undonePoint}, not ${beforePoint}`);
+  await page.keyboard.press('Control+Shift+z');
+  const redonePoint = await api(() => window.phedraDesigner.preset().trajectory[3]);
+  check(JSON.stringify(redonePoint) === JSON.stringify(afterPoint), `Ctrl+Shift+Z gives trajectory[3] = ${redonePoint}`);
+  // Mode switches keep the open design: open -> grid -> open restores its apexes and signs.
+  {
+    const open = await api(() => window.phedraDesigner.preset());
+    await page.selectOption('#mode', 'grid');
+    await page.waitForTimeout(100);
+    check((await api(() => window.phedraDesigner.preset())).grid !== undefined, 'the grid mode has no grid');
+    check(await page.$eval('#add-apex', (e) => e.hidden), '"+ apex" shown on a grid, where it does nothing');
+    await page.selectOption('#mode', 'open');
+    await page.waitForTimeout(100);
+    const back = await api(() => window.phedraDesigner.preset());
+    check(JSON.stringify(back.apex_heights) === JSON.stringify(open.apex_heights) && back.signs === open.signs,
+      `open -> grid -> open gives apexes ${back.apex_heights} and signs ${back.signs}, not ${open.apex_heights} ${open.signs}`);
+  }
+  // An apex handle follows the pointer along its line (within 2 px), and when
+  // the moving apex moves t*, the panel says so.
+  {
+    const p2 = await api(() => window.phedraDesigner.handleScreen('apex_heights', 2));
+    const p3 = await api(() => window.phedraDesigner.handleScreen('apex_heights', 3));
+    const length = Math.hypot(p3[0] - p2[0], p3[1] - p2[1]);
+    const u = [(p3[0] - p2[0]) / length, (p3[1] - p2[1]) / length];
+    const target = [p2[0] + 20 * u[0], p2[1] + 20 * u[1]];
+    await page.mouse.move(...p2);
+    await page.mouse.down();
+    for (let k = 1; k <= 4; ++k) await page.mouse.move(p2[0] + 5 * k * u[0], p2[1] + 5 * k * u[1]);
+    await page.mouse.up();
+    await page.waitForTimeout(150);
+    const at = await api(() => window.phedraDesigner.handleScreen('apex_heights', 2));
+    const off = Math.hypot(at[0] - target[0], at[1] - target[1]);
+    check(off <= 2, `the apex handle ends ${off.toFixed(1)} px from the pointer`);
+    const moving = (await api(() => window.phedraDesigner.info())).moving_apex;
+    const index = moving === 'S_0' ? 0 : 1;
+    const q = await api((k) => window.phedraDesigner.handleScreen('apex_heights', k), index);
+    const before = (await api(() => window.phedraDesigner.info())).t_star;
+    await page.mouse.move(...q);
+    await page.mouse.down();
+    for (let k = 1; k <= 3; ++k) await page.mouse.move(q[0] + 3 * k * u[0], q[1] + 3 * k * u[1]);
+    await page.mouse.up();
+    await page.waitForTimeout(150);
+    const after = (await api(() => window.phedraDesigner.info())).t_star;
+    const note = await page.$eval('#tstar-note', (e) => e.textContent);
+    check(after === before || note.startsWith('t* moved from') && note.includes(`moving apex ${moving}`),
+      `t* ${before} -> ${after}, the panel says "${note}"`);
+  }
+
   // Break an assumption through the preset JSON: a direction along the axis.
   const shown = await api(() => window.phedraDesigner.positions());
   await page.click('#json-summary');
@@ -263,6 +319,9 @@ try {
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save')]);
   const saved = path.join(scratch, 'saved.json');
   await download.saveAs(saved);
+  const savedPreset = JSON.parse(readFileSync(saved, 'utf8'));
+  check(savedPreset.name === 'mixed-signs-edited', `the edited design is saved as "${savedPreset.name}"`);
+  check(savedPreset.description.includes('Edited in the phedra designer from "mixed-signs"'), `saved description "${savedPreset.description}"`);
   const sample = JSON.parse(execFileSync(phedra, ['sample', saved, '--t', String(t1)], { encoding: 'utf8', maxBuffer: 1 << 26 }));
   const positions = await api(() => window.phedraDesigner.positions());
   let worst = 0;
