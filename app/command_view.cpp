@@ -1,10 +1,14 @@
 // phedra view FILE.glb [--port P]: serves the viewer page and the model on 127.0.0.1.
 
+#include "buildability_warning.h"
 #include "commands.h"
 #include "phedra/errors.h"
+#include "phedra/gltf_export.h"
+#include "phedra/preset.h"
 #include "static_server.h"
 #include "support.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -16,8 +20,46 @@ struct ViewOptions {
   std::string file;
   std::uint16_t port = 8765;
   std::string web = PHEDRA_WEB_DIR;
+  std::string presets = PHEDRA_PRESETS_DIR;
   std::size_t requests = 0;
 };
+
+/// The presets for the pages' menus: /presets/index.json lists
+/// [{file, name, description}]; each preset is at /presets/FILE and its default
+/// glTF export at /presets/STEM.glb (made when the viewer asks for it).
+void serve_presets(StaticServer& server, const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  if (fs::is_directory(dir)) {
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      if (entry.is_regular_file() && entry.path().extension() == ".json" && entry.path().stem() != "preset.schema") {
+        files.push_back(entry.path());
+      }
+    }
+  }
+  std::sort(files.begin(), files.end());
+  nlohmann::json index = nlohmann::json::array();
+  for (const fs::path& path : files) {
+    nlohmann::json document;
+    try {
+      document = parse_json_text(read_text_file(path));
+    } catch (const Error&) {
+      continue;  // not readable as JSON: not listed
+    }
+    const std::string stem = path.stem().string();
+    index.push_back({{"file", path.filename().string()},
+                     {"name", document.is_object() ? document.value("name", stem) : stem},
+                     {"description", document.is_object() ? document.value("description", "") : ""}});
+    server.add_file("/presets/" + path.filename().string(), path);
+    server.add_generated("/presets/" + stem + ".glb", [path] {
+      const Design design = load_design(path);
+      GltfOptions options;
+      options.buildability = assess_for_output(design).file_json();
+      return gltf_bytes(design, options);
+    }, "model/gltf-binary");
+  }
+  server.add_generated("/presets/index.json", [text = index.dump()] { return text; }, "application/json");
+}
 
 }  // namespace
 
@@ -30,6 +72,8 @@ void add_view_command(CLI::App& app, Context& context) {
   sub->add_option("file", o->file, "An animated .glb written by `phedra generate`, or a preset .json to design")->required();
   sub->add_option("--port", o->port, "Port on 127.0.0.1 (0: any free port)")->capture_default_str();
   sub->add_option("--web", o->web, "The viewer's directory (web/ with its node_modules)")->capture_default_str();
+  sub->add_option("--presets", o->presets, "The presets the pages list (a directory of preset .json files)")
+      ->capture_default_str();
   sub->add_option("--requests", o->requests, "Stop after this many requests (0: serve until interrupted)");
   sub->callback([o, &context] {
     namespace fs = std::filesystem;
@@ -50,6 +94,7 @@ void add_view_command(CLI::App& app, Context& context) {
       }
       StaticServer server(o->web, o->port);
       server.add_file("/preset.json", o->file);
+      serve_presets(server, o->presets);
       context.out << "designer for " << o->file << " at http://127.0.0.1:" << server.port() << "/designer.html"
                   << std::endl;
       server.serve(o->requests);
@@ -63,6 +108,7 @@ void add_view_command(CLI::App& app, Context& context) {
     }
     StaticServer server(o->web, o->port);
     server.add_file("/model.glb", o->file);
+    serve_presets(server, o->presets);
     context.out << "viewer for " << o->file << " at http://127.0.0.1:" << server.port() << "/" << std::endl;
     server.serve(o->requests);
   });

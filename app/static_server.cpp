@@ -66,6 +66,10 @@ StaticServer::~StaticServer() {
 
 void StaticServer::add_file(const std::string& url_path, std::filesystem::path file) { files_[url_path] = std::move(file); }
 
+void StaticServer::add_generated(const std::string& url_path, std::function<std::string()> make, std::string mime) {
+  generated_[url_path] = {std::move(make), std::move(mime)};
+}
+
 void StaticServer::serve(std::size_t max_requests) {
   for (std::size_t answered = 0; max_requests == 0 || answered < max_requests; ++answered) {
     const int client = ::accept(socket_, nullptr, nullptr);
@@ -86,6 +90,15 @@ void StaticServer::answer(int client) {
   if (method != "GET") return respond(client, 405, "Method Not Allowed", "text/plain", "GET only\n");
   target = target.substr(0, target.find('?'));
   if (target == "/") target = "/index.html";
+  if (const auto it = generated_.find(target); it != generated_.end()) {
+    std::string body;
+    try {
+      body = it->second.first();
+    } catch (const std::exception& e) {
+      return respond(client, 500, "Internal Server Error", "text/plain", std::string(e.what()) + "\n");
+    }
+    return respond(client, 200, "OK", it->second.second, body);
+  }
   std::filesystem::path file;
   if (const auto it = files_.find(target); it != files_.end()) {
     file = it->second;

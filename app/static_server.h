@@ -22,6 +22,9 @@ class StaticServer {
   std::uint16_t port() const { return port_; }
   /// Serves `file` at `url_path` (for example "/model.glb").
   void add_file(const std::string& url_path, std::filesystem::path file);
+  /// Serves what `make()` returns at `url_path`, made when asked for (an
+  /// exception it throws answers 500 with its message), as `mime`.
+  void add_generated(const std::string& url_path, std::function<std::string()> make, std::string mime);
   /// Serves requests until `keep_going()` returns false (checked between requests)
   /// or `max_requests` were answered (0: no limit).
   void serve(std::size_t max_requests = 0);
@@ -30,6 +33,7 @@ class StaticServer {
   void answer(int client);
   std::filesystem::path root_;
   std::map<std::string, std::filesystem::path> files_;
+  std::map<std::string, std::pair<std::function<std::string()>, std::string>> generated_;
   int socket_ = -1;
   std::uint16_t port_ = 0;
 };

@@ -158,8 +158,9 @@ function followTStar(before) {
 // Every accepted edit (a drag counts once, from press to release), repairs and
 // mode switches included: [{preset, what}].
 const history = [], future = [];
+let loadedName = null;  // the name of the preset as loaded, to say what an edited design came from
 function remember(previous, what) {
-  history.push({ preset: clone(previous), what });
+  history.push({ preset: clone(previous), what, origin: loadedName });
   if (history.length > 500) history.shift();
   future.length = 0;
   updateUndo();
@@ -175,7 +176,8 @@ function undo() {
   if (!entry) return;
   const now = clone(preset);
   if (apply(entry.preset, { record: false })) {
-    future.push({ preset: now, what: entry.what });
+    future.push({ preset: now, what: entry.what, origin: loadedName });
+    loadedName = entry.origin;
     showRepair(entry.what === 'repair' ? 'repair undone: the previous design is back' : `${entry.what} undone`);
   } else {
     history.push(entry);
@@ -187,7 +189,8 @@ function redo() {
   if (!entry) return;
   const now = clone(preset);
   if (apply(entry.preset, { record: false })) {
-    history.push({ preset: now, what: entry.what });
+    history.push({ preset: now, what: entry.what, origin: loadedName });
+    loadedName = entry.origin;
     showRepair(`${entry.what} redone`);
   } else {
     future.push(entry);
@@ -954,7 +957,6 @@ function download(name, data, type) {
   setTimeout(() => URL.revokeObjectURL(url), 1000);
 }
 const presetText = () => JSON.stringify(preset, null, 2) + '\n';
-let loadedName = null;  // the name of the preset as loaded, to say what an edited design came from
 /// The preset as saved: its name from the name box (the loaded name + "-edited"
 /// once the design changed and no other was typed), its description what the design is now.
 function savedPreset() {
@@ -976,16 +978,42 @@ $('name').addEventListener('change', () => {
   const name = $('name').value.trim();
   if (name && name !== preset.name) apply({ ...clone(preset), name }, { what: 'rename' });
 });
-$('load').addEventListener('change', async (e) => {
-  const file = e.target.files[0];
-  if (!file) return;
+/// Opens a preset the user picked, dropped or chose from the shipped ones (undoable).
+function openPreset(text, name) {
   try {
-    const loaded = JSON.parse(await file.text());
-    if (apply(loaded, { what: `load of ${file.name}` })) loadedName = loaded.name ?? file.name.replace(/\.json$/, '');
+    const loaded = JSON.parse(text);
+    if (apply(loaded, { what: `load of ${name}` })) loadedName = loaded.name ?? name.replace(/\.json$/, '');
   } catch (error) {
-    failure = { field: '', message: `${file.name}: ${error.message}` };
+    failure = { field: '', message: `${name}: ${error.message}` };
     showMessage();
   }
+}
+$('load').addEventListener('change', async (e) => {
+  const file = e.target.files[0];
+  if (file) openPreset(await file.text(), file.name);
+});
+window.addEventListener('dragover', (e) => e.preventDefault());
+window.addEventListener('drop', async (e) => {
+  e.preventDefault();
+  const file = e.dataTransfer.files[0];
+  if (file) openPreset(await file.text(), file.name);
+});
+// The shipped presets, as `phedra view` serves them.
+fetch('/presets/index.json').then((r) => (r.ok ? r.json() : [])).then((list) => {
+  for (const p of list) {
+    const option = document.createElement('option');
+    option.value = p.file;
+    option.textContent = p.name;
+    option.title = p.description;
+    $('presets').append(option);
+  }
+  $('presets').disabled = list.length === 0;
+}).catch(() => { $('presets').disabled = true; });
+$('presets').addEventListener('change', async (e) => {
+  const file = e.target.value;
+  if (!file) return;
+  openPreset(await (await fetch(`/presets/${file}`)).text(), file);
+  e.target.value = '';
 });
 /// The animated .glb, written by the core as `phedra generate -o X.glb` writes it.
 function glbBytes() {

@@ -124,7 +124,24 @@ function legend(json) {
   }).join(' ');
 }
 
-new GLTFLoader().load('/model.glb', (loaded) => {
+const timelineControls = ['slider', 'play', 'prev', 'next', 'to-lo', 'to-star', 'to-hi', 'type-t'];
+let helpers = [];
+
+/// Removes the shown model, its animation and its grid.
+function clearModel() {
+  if (!gltf) return;
+  mixer?.stopAllAction();
+  scene.remove(gltf.scene, ...helpers);
+  gltf = mixer = action = box = null;
+  times = [];
+  duration = position = 0;
+  direction = 1;
+  for (const id of ['restricted', 'legend', 'message', 'buildability', 'fraction']) $(id).textContent = '';
+}
+
+/// Shows a loaded glTF in place of the previous model.
+function showModel(loaded) {
+  clearModel();
   gltf = loaded;
   const json = gltf.parser.json;
   info = json.asset.extras?.phedra ?? {};
@@ -148,6 +165,7 @@ new GLTFLoader().load('/model.glb', (loaded) => {
   }
   const panels = info.panels ?? json.nodes.length;
   const animated = gltf.animations.length > 0;
+  for (const id of timelineControls) $(id).disabled = !animated;
   if (animated) {
     mixer = new THREE.AnimationMixer(gltf.scene);
     action = mixer.clipAction(gltf.animations[0]);
@@ -162,19 +180,63 @@ new GLTFLoader().load('/model.glb', (loaded) => {
     show(timeOf(info.t_star) ?? 0);
   } else {
     box = expandByShownVertices(new THREE.Box3(), gltf.scene);
-    for (const id of ['slider', 'play', 'prev', 'next', 'to-lo', 'to-star', 'to-hi', 'type-t']) $(id).disabled = true;
+    for (const id of timelineControls) $(id).disabled = true;
     $('t').textContent = format(info.t ?? info.t_star);
     setPlaying(false);
   }
   const { grid, cell } = groundGrid(box);
-  scene.add(grid);
-  scene.add(new THREE.AxesHelper(cell).translateX(box.min.x).translateY(box.min.y).translateZ(box.max.z));
+  const axes = new THREE.AxesHelper(cell).translateX(box.min.x).translateY(box.min.y).translateZ(box.max.z);
+  scene.add(grid, axes);
+  helpers = [grid, axes];
   $('scale').textContent = `grid cells of ${format(cell)} model units; axes x red, y (up) green, z blue, one cell long`;
   fit();
   $('status').textContent = `${panels} panels (${info.representation ?? 'nodes'}), ${outlines.edges} edges drawn` +
     (animated ? `, ${times.length} keyframes, ${format(duration)} s` : ', static');
   window.phedraViewer.ready = true;
-}, undefined, (error) => { $('status').textContent = `cannot load the model: ${error.message ?? error}`; console.error(error); });
+  window.phedraViewer.loads += 1;
+}
+
+function failed(error) {
+  $('status').textContent = `cannot load the model: ${error.message ?? error}`;
+  console.error(error);
+}
+/// Loads a .glb from the server (the file `phedra view` was given, or a preset's export).
+function loadUrl(url, what) {
+  $('status').textContent = `loading ${what}…`;
+  new GLTFLoader().load(url, showModel, undefined, failed);
+}
+/// Loads a .glb the user picked or dropped.
+async function loadFile(file) {
+  if (!/\.(glb|gltf)$/i.test(file.name)) {
+    $('status').textContent = `${file.name}: the viewer shows .glb files (phedra generate PRESET -o FILE.glb)`;
+    return;
+  }
+  $('status').textContent = `loading ${file.name}…`;
+  $('presets').value = '';
+  new GLTFLoader().parse(await file.arrayBuffer(), '', showModel, failed);
+}
+loadUrl('/model.glb', 'the model');
+
+// The shipped presets (as `phedra view` serves them), each shown through its default export.
+fetch('/presets/index.json').then((r) => (r.ok ? r.json() : [])).then((list) => {
+  for (const p of list) {
+    const option = document.createElement('option');
+    option.value = p.file.replace(/\.json$/, '');
+    option.textContent = p.name;
+    option.title = p.description;
+    $('presets').append(option);
+  }
+  $('presets').disabled = list.length === 0;
+}).catch(() => { $('presets').disabled = true; });
+$('presets').addEventListener('change', (e) => {
+  if (e.target.value) loadUrl(`/presets/${e.target.value}.glb`, `the preset ${e.target.value} (exporting it)`);
+});
+$('open').addEventListener('change', (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); });
+window.addEventListener('dragover', (e) => e.preventDefault());
+window.addEventListener('drop', (e) => {
+  e.preventDefault();
+  if (e.dataTransfer.files[0]) loadFile(e.dataTransfer.files[0]);
+});
 
 $('slider').addEventListener('input', () => {
   setPlaying(false);
@@ -235,6 +297,7 @@ renderer.setAnimationLoop(() => {
 // For tests and scripts: the world position of a mesh vertex, and the state.
 window.phedraViewer = {
   ready: false,
+  loads: 0,  // models shown so far (the file, then presets and files the user opens)
   pause() { setPlaying(false); },
   play() { setPlaying(true); },
   /// Mesh vertex `index` (as phedra numbers it: `phedra sample`'s order) in

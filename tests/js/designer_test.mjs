@@ -329,6 +329,19 @@ try {
   check(3 * sample.samples[0].vertices.length === positions.length, 'the saved preset has another vertex count');
   check(worst < 1e-9 * info.model_size, `the saved preset differs from the page by ${worst}`);
 
+  // The shipped presets menu opens one (undoably).
+  {
+    const options = await page.$$eval('#presets option', (list) => list.map((o) => o.value).filter(Boolean));
+    check(options.includes('grid-3x3.json') && options.includes('default.json'), `presets menu: ${options}`);
+    const mine = await api(() => window.phedraDesigner.preset());
+    await page.selectOption('#presets', 'grid-3x3.json');
+    await page.waitForFunction(() => window.phedraDesigner.preset().name === 'grid-3x3', null, { timeout: 10000 });
+    await page.keyboard.press('Control+z');
+    const back = await api(() => window.phedraDesigner.preset());
+    check(JSON.stringify(back) === JSON.stringify(mine), 'Ctrl+Z after opening a shipped preset does not bring the design back');
+  }
+
+
   // Exports.
   const glb = await api(() => window.phedraDesigner.glbSize());
   check(glb > 1000, `.glb export of ${glb} bytes`);

@@ -92,6 +92,17 @@ try {
   // A PNG of the view.
   const [download] = await Promise.all([page.waitForEvent('download'), page.click('#png')]);
   check(download.suggestedFilename().endsWith('.png'), `saved "${download.suggestedFilename()}"`);
+  // The shipped presets menu shows a preset through its default export; Open .glb shows a file.
+  const options = await page.$$eval('#presets option', (list) => list.map((o) => o.value).filter(Boolean));
+  check(options.includes('helix-tube') && options.includes('grid-3x3'), `presets menu: ${options}`);
+  const loads = await viewer(() => window.phedraViewer.loads);
+  await page.selectOption('#presets', 'helix-tube');
+  await page.waitForFunction((n) => window.phedraViewer.loads > n, loads, { timeout: 30000 });
+  const helix = [await page.$eval('#title', (e) => e.textContent), await page.$eval('#status', (e) => e.textContent)];
+  check(helix[0] === 'helix-tube' && helix[1].startsWith('72 panels (morph targets)'), `the helix-tube preset shows ${helix}`);
+  await page.setInputFiles('#open', glb);
+  await page.waitForFunction((n) => window.phedraViewer.loads > n + 1, loads, { timeout: 30000 });
+  check((await page.$eval('#status', (e) => e.textContent)).startsWith(`${panels} panels`), 'Open .glb did not show the file again');
   // The buildability the command stored in the file.
   const buildability = await page.$eval('#buildability', (e) => e.textContent);
   const buildable = Number(invalid) === 0;
