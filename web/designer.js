@@ -5,6 +5,7 @@
 // CLI's, and a saved preset gives the same `phedra sample` result.
 import * as THREE from 'three';
 import { createStage } from './scene.js';
+import { frameBox } from './framing.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -137,6 +138,7 @@ function apply(candidate, { keepFigures = false, what = 'edit', record = true } 
   calibrate = true;
   if (!keepFigures) scheduleFigures();
   showMessage();
+  if (framed) refitIfOutside();
   return true;
 }
 
@@ -153,6 +155,51 @@ function followTStar(before) {
     $('tstar-note').textContent = '';
   }
 }
+
+// --- the view ------------------------------------------------------------------
+/// Everything the design shows over its whole motion (the surface at 9 t across
+/// the flexion interval), or at the slider's t only (`motion` false), and the handles.
+function designBox(motion = true) {
+  const box = new THREE.Box3(), v = new THREE.Vector3();
+  for (const f of motion ? [0, 1, 2, 3, 4, 5, 6, 7, 8].map((k) => k / 8) : [fraction]) {
+    const x = designer.evaluate(tOf(f));
+    if (x.ok === false) continue;
+    for (let i = 0; i + 2 < x.length; i += 3) box.expandByPoint(v.set(x[i], x[i + 1], x[i + 2]));
+  }
+  for (const mesh of Object.values(handleMeshes)) {
+    const m = new THREE.Matrix4();
+    for (let k = 0; k < mesh.count; ++k) {
+      mesh.getMatrixAt(k, m);
+      box.expandByPoint(v.setFromMatrixPosition(m));
+    }
+  }
+  return box;
+}
+/// Frames the design over its motion (Fit view, f), or as shown at the slider's
+/// t (Fit t, Shift+F: larger, for editing), in the part of the canvas the panel leaves free.
+let framed = false;  // the first framing happened
+function fitView({ motion = true } = {}) {
+  framed = true;
+  const canvas = renderer.domElement, panel = $('panel').getBoundingClientRect();
+  frameBox(camera, controls, designBox(motion), { left: panel.right + 8, width: canvas.clientWidth, height: canvas.clientHeight });
+  requestRender();
+}
+/// Refits when an edit took the shown surface out of the view (never while dragging).
+function refitIfOutside() {
+  if (drag || !framed) return;
+  surface.geometry.computeBoundingBox();
+  const b = surface.geometry.boundingBox, corner = new THREE.Vector3();
+  for (const x of [b.min.x, b.max.x]) for (const y of [b.min.y, b.max.y]) for (const z of [b.min.z, b.max.z]) {
+    corner.set(x, y, z).project(camera);
+    if (Math.abs(corner.x) > 1 || Math.abs(corner.y) > 1 || corner.z > 1) { fitView(); return; }
+  }
+}
+window.addEventListener('keydown', (e) => {
+  if (e.target instanceof HTMLTextAreaElement || e.target instanceof HTMLInputElement) return;
+  if (e.key === 'f') fitView();
+  else if (e.key === 'F') fitView({ motion: false });
+});
+window.addEventListener('resize', () => { if (info) fitView(); });
 
 // --- undo and redo ---------------------------------------------------------------
 // Every accepted edit (a drag counts once, from press to release), repairs and
@@ -532,7 +579,7 @@ function updateLabels() {
   $('hi').textContent = format(info.t_mu);
   $('tstar').textContent = format(info.t_star);
   const star = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
-  $('tstarmark').style.marginLeft = `${Math.round(star * 100 - 50)}%`;
+  $('tstarmark').style.left = `calc(8px + ${star.toFixed(4)} * (100% - 16px))`;
 }
 
 /// Everything the panel shows: the labels, the preset's text, mode and signs.
@@ -818,6 +865,7 @@ function applyEdit(edit) {
 /// more than a drag step on a large model, so they wait for the hand to stop).
 function settle() {
   $('json').value = JSON.stringify(preset, null, 2);
+  refitIfOutside();
   scheduleFigures();
 }
 
@@ -1023,6 +1071,15 @@ function glbBytes() {
 }
 $('export-glb').addEventListener('click', () => download(`${preset.name || 'phedra'}.glb`, glbBytes(), 'model/gltf-binary'));
 $('export-fold').addEventListener('click', () => download(`${preset.name || 'phedra'}.fold`, designer.fold(41), 'application/json'));
+$('fit').addEventListener('click', () => fitView());
+$('fit-t').addEventListener('click', () => fitView({ motion: false }));
+$('png').addEventListener('click', () => {
+  renderer.render(scene, camera);
+  const a = document.createElement('a');
+  a.download = `${preset.name || 'phedra'}.png`;
+  a.href = renderer.domElement.toDataURL('image/png');
+  a.click();
+});
 
 // --- start -----------------------------------------------------------------
 let frameLog = null;  // while recording (bench/designer.mjs): [{start, work, edit}] a frame
@@ -1060,13 +1117,8 @@ if (info) {
   fraction = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
   $('slider').value = String(Math.round(fraction * 1000));
   updatePositions();
-  surface.geometry.computeBoundingSphere();
-  const sphere = surface.geometry.boundingSphere;
-  controls.target.copy(sphere.center);
-  camera.position.copy(sphere.center).add(new THREE.Vector3(1.6, -2.2, 1.2).multiplyScalar(sphere.radius));
-  camera.near = sphere.radius / 100;
-  camera.far = sphere.radius * 100;
-  camera.updateProjectionMatrix();
+  camera.position.set(1.6, -2.2, 1.2);  // the direction fitView looks from at first
+  fitView();
 }
 requestAnimationFrame(frame);
 
@@ -1083,6 +1135,17 @@ window.phedraDesigner = {
   /// Every vertex at the slider's t in double precision, straight from the core.
   positions: () => Array.from(designer.evaluate(tOf(fraction))),
   handlePosition: (kind, index) => handlePosition(kind, index)?.toArray() ?? null,
+  /// The surface's extent on screen (normalised device coordinates) at fraction f of the interval.
+  screenBox: (f) => {
+    const x = designer.evaluate(tOf(f)), v = new THREE.Vector3();
+    const out = { minX: Infinity, maxX: -Infinity, minY: Infinity, maxY: -Infinity };
+    for (let i = 0; i + 2 < x.length; i += 3) {
+      v.set(x[i], x[i + 1], x[i + 2]).project(camera);
+      out.minX = Math.min(out.minX, v.x); out.maxX = Math.max(out.maxX, v.x);
+      out.minY = Math.min(out.minY, v.y); out.maxY = Math.max(out.maxY, v.y);
+    }
+    return out;
+  },
   handleScreen: (kind, index) => {
     const p = handlePosition(kind, index);
     return p ? screenOf(p) : null;

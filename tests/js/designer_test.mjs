@@ -188,6 +188,8 @@ try {
     await settled();
   }
 
+  // For editing with the mouse: the design as shown at t, larger (Fit t).
+  await page.click('#fit-t');
   // Drag trajectory point 3 with the mouse: the preset and the mesh change, still valid.
   const info = await api(() => window.phedraDesigner.info());
   const vertex = 3 * (info.vertices / (await api(() => window.phedraDesigner.preset().trajectory.length)));  // a vertex of row 3
@@ -212,6 +214,21 @@ try {
   check(resolution.canvas[0] === fullWidth, `after the drag the canvas is ${resolution.canvas} pixels wide, not ${fullWidth}`);
   check(resolution.ratio >= 0.35 && resolution.ratio <= 1 && resolution.drawCost !== null, `drag resolution ${JSON.stringify(resolution)}`);
 
+  // The view frames the design over its whole motion: inside the canvas at both limits.
+  for (const f of [0, 1]) {
+    const b = await api((x) => window.phedraDesigner.screenBox(x), f);
+    check(b.minX >= -1.001 && b.maxX <= 1.001 && b.minY >= -1.001 && b.maxY <= 1.001, `at fraction ${f} the design leaves the view: ${JSON.stringify(b)}`);
+  }
+  // The t* tick under the slider's thumb at t*.
+  {
+    const tick = await page.$eval('#tstarmark', (e) => { const r = e.getBoundingClientRect(); return r.left + r.width / 2; });
+    const thumb = await page.$eval('#slider', (s) => {
+      const r = s.getBoundingClientRect(), info = window.phedraDesigner.info();
+      const f = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
+      return r.left + 8 + f * (r.width - 16);
+    });
+    check(Math.abs(tick - thumb) <= 3, `the t* tick is at x ${tick.toFixed(0)}, the thumb at t* at ${thumb.toFixed(0)}`);
+  }
   // After an edit the slider is at the new t*, where the surface passes through the handles.
   {
     const now = await api(() => window.phedraDesigner.info());
@@ -373,6 +390,7 @@ try {
   check(smaller.includes('2 x 3 grid'), `after 2 cells along u: "${smaller}"`);
 
   // Drag a height of the grid's further cells (a purple handle on the apex line) with the mouse.
+  await page.click('#fit-t');
   const uBefore = await api(() => window.phedraDesigner.preset().grid.u_heights[2]);
   const heightAt = await api(() => window.phedraDesigner.handleScreen('grid.u_heights', 2));
   check(heightAt !== null, 'no handle for grid.u_heights[2]');
