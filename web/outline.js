@@ -7,7 +7,7 @@ import * as THREE from 'three';
 /// The panels of a morph primitive as lists of local vertex indices, from its
 /// triangle index: quads are written (a, b, c), (a, c, d); the primitive's
 /// extras list which of its panels are single triangles (two corners welded).
-function primitivePanels(index, triangles) {
+export function primitivePanels(index, triangles) {
   const single = new Set(triangles ?? []);
   const panels = [];
   for (let at = 0, k = 0; at < index.length; ++k) {
@@ -52,7 +52,7 @@ function edgeIndex(panels) {
 export function addPanelOutlines(gltf, invalidPanels = []) {
   const json = gltf.parser.json;
   const invalid = new Set(invalidPanels);
-  const lineMaterial = new THREE.LineBasicMaterial({ color: 0x14181d, transparent: true, opacity: 0.75 });
+  const lineMaterial = new THREE.LineBasicMaterial({ color: 0x1b2028 });
   const redMaterial = new THREE.MeshBasicMaterial({ color: 0xe53935, side: THREE.DoubleSide,
     polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -1 });
   let edges = 0, red = 0;

@@ -7,6 +7,7 @@ import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
+import { Folds, foldColours } from './folds.js';
 import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, motionBox } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
@@ -18,6 +19,7 @@ const format = (x) => (x === undefined || x === null || !Number.isFinite(x) ? 'â
 
 let gltf = null, mixer = null, action = null, info = {}, times = [], duration = 0;
 let position = 0, direction = 1, playing = true, box = null, outlines = { edges: 0, invalid: 0 };
+let folds = null, foldCounts = { mountains: 0, valleys: 0 }, foldsShownAt = -1, picked = -1, marker = null;
 
 /// t at animation time `seconds`: piecewise linear between keyframes.
 function tAt(seconds) {
@@ -56,6 +58,64 @@ function show(seconds) {
   const fraction = (t - info.t_lambda) / (info.t_mu - info.t_lambda);
   $('t').textContent = format(t);
   $('fraction').textContent = `${(100 * fraction).toFixed(1)} % of the flexion interval`;
+  // Mountain/valley colours follow the pose (while playing, ten times a second).
+  const now = performance.now();
+  if (folds && (!playing || now - foldsShownAt > 100)) {
+    foldsShownAt = now;
+    foldCounts = folds.update();
+    $('folds').innerHTML = `hinges at this t: <span style="color:#${foldColours.mountain.toString(16)}">` +
+      `${foldCounts.mountains} mountain</span>, <span style="color:#${foldColours.valley.toString(16)}">` +
+      `${foldCounts.valleys} valley</span>, the rest flat or boundary (dark); click a hinge for its fold angle over the motion`;
+  }
+  if (picked >= 0) showPicked(t);
+}
+
+/// The picked hinge: a marker on it and its fold angle now, and the plot's cursor at t.
+function showPicked(t) {
+  const [p, q] = folds.ends(picked);
+  marker.geometry.setFromPoints([p, q]);
+  const angle = folds.angle(folds.hinges[picked], folds.shownPositions());
+  $('hinge-angle').textContent = `hinge ${picked} (vertices ${folds.hinges[picked].from}-${folds.hinges[picked].to}): ` +
+    `${format(angle)} degrees (${Math.abs(angle) < 1e-6 ? 'flat' : angle > 0 ? 'valley' : 'mountain'})`;
+  const cursor = $('hinge-plot').querySelector('.cursor');
+  if (cursor) {
+    const x = plotX(t);
+    cursor.setAttribute('x1', x);
+    cursor.setAttribute('x2', x);
+  }
+}
+const plot = { width: 330, height: 110, left: 34, right: 6, top: 6, bottom: 18 };
+const plotX = (t) => plot.left + (t - info.t_lambda) / (info.t_mu - info.t_lambda) * (plot.width - plot.left - plot.right);
+const plotY = (angle) => plot.top + (180 - angle) / 360 * (plot.height - plot.top - plot.bottom);
+
+/// Picks the hinge nearest `point` (on the surface) and plots its fold angle over the motion.
+function pickHinge(point) {
+  picked = folds.hingeNear(point);
+  if (picked < 0) return;
+  if (!marker) {
+    marker = new THREE.Line(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xffeb3b, depthTest: false }));
+    marker.renderOrder = 5;
+  }
+  scene.add(marker);
+  const keep = position, samples = [];
+  for (let k = 0; k <= 120; ++k) {
+    const seconds = duration * k / 120;
+    setTime(seconds);
+    samples.push([tAt(seconds), folds.angle(folds.hinges[picked], folds.shownPositions())]);
+  }
+  setTime(keep);
+  const svg = ['<svg xmlns="http://www.w3.org/2000/svg" width="330" height="110" role="img" aria-label="fold angle over the motion">'];
+  for (const a of [-180, -90, 0, 90, 180]) {
+    svg.push(`<line x1="${plot.left}" x2="${plot.width - plot.right}" y1="${plotY(a)}" y2="${plotY(a)}" stroke="#3a434e"/>`,
+             `<text x="${plot.left - 4}" y="${plotY(a) + 4}" text-anchor="end" font-size="10" fill="#9fb3c8">${a}</text>`);
+  }
+  svg.push(`<polyline fill="none" stroke="#ffeb3b" stroke-width="1.5" points="${samples.map(([t, a]) => `${plotX(t).toFixed(1)},${plotY(a).toFixed(1)}`).join(' ')}"/>`,
+           `<line class="cursor" y1="${plot.top}" y2="${plot.height - plot.bottom}" stroke="#e8e8e8" stroke-dasharray="3 2"/>`,
+           `<text x="${plot.left}" y="${plot.height - 4}" font-size="10" fill="#9fb3c8">t = ${format(info.t_lambda)}</text>`,
+           `<text x="${plot.width - plot.right}" y="${plot.height - 4}" text-anchor="end" font-size="10" fill="#9fb3c8">t = ${format(info.t_mu)} (fold angle in degrees, valley > 0)</text>`,
+           '</svg>');
+  $('hinge-plot').innerHTML = svg.join('');
+  showPicked(tAt(position));
 }
 
 function setPlaying(on) {
@@ -132,7 +192,10 @@ function clearModel() {
   if (!gltf) return;
   mixer?.stopAllAction();
   scene.remove(gltf.scene, ...helpers);
-  gltf = mixer = action = box = null;
+  gltf = mixer = action = box = folds = null;
+  picked = -1;
+  if (marker) scene.remove(marker);
+  $('hinge-plot').textContent = $('hinge-angle').textContent = $('folds').textContent = '';
   times = [];
   duration = position = 0;
   direction = 1;
@@ -147,6 +210,8 @@ function showModel(loaded) {
   info = json.asset.extras?.phedra ?? {};
   scene.add(gltf.scene);
   outlines = addPanelOutlines(gltf, info.buildability?.invalid_panels ?? []);
+  folds = Folds.of(gltf);
+  foldsShownAt = -1;
   $('title').textContent = info.name ?? 'phedra';
   $('kind').textContent = info.kind ?? '';
   $('lo').textContent = format(info.t_lambda);
@@ -261,6 +326,19 @@ $('type-t').addEventListener('change', () => {
   jumpTo(t);
 });
 $('fit').addEventListener('click', fit);
+// A click (not a drag of the view) on the surface picks the nearest hinge.
+let pressed = null;
+renderer.domElement.addEventListener('pointerdown', (e) => { pressed = [e.clientX, e.clientY]; });
+renderer.domElement.addEventListener('pointerup', (e) => {
+  if (!pressed || !folds || Math.hypot(e.clientX - pressed[0], e.clientY - pressed[1]) > 4) return;
+  const rect = renderer.domElement.getBoundingClientRect();
+  const raycaster = new THREE.Raycaster();
+  raycaster.setFromCamera(new THREE.Vector2((e.clientX - rect.left) / rect.width * 2 - 1, -(e.clientY - rect.top) / rect.height * 2 + 1), camera);
+  const surfaces = [];
+  gltf.scene.traverse((o) => { if (o.isMesh) surfaces.push(o); });  // front faces, and the back faces' meshes
+  const hit = raycaster.intersectObjects(surfaces, false)[0];
+  if (hit) pickHinge(hit.point);
+});
 $('png').addEventListener('click', savePicture);
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
@@ -323,7 +401,14 @@ window.phedraViewer = {
     return found;
   },
   t() { return $('t').textContent; },
-  state() { return { position, duration, playing, direction, keyframes: times.length, ...outlines }; },
+  state() { return { position, duration, playing, direction, keyframes: times.length, ...outlines, ...foldCounts, picked }; },
+  /// Where on the page the middle of hinge k is shown (pixels), for a click on it.
+  hingeScreen(k) {
+    const [p, q] = folds.ends(k), m = p.add(q).multiplyScalar(0.5).project(camera);
+    const rect = renderer.domElement.getBoundingClientRect();
+    return [rect.left + (m.x + 1) / 2 * rect.width, rect.top + (1 - m.y) / 2 * rect.height];
+  },
+  hinges: () => folds?.hinges.length ?? 0,
   /// The model's extent on screen (normalised device coordinates, -1..1 fills
   /// the canvas) at animation time `seconds` (default: as shown).
   screenBox(seconds) {

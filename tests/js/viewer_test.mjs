@@ -48,6 +48,21 @@ try {
     check(Math.max(b.maxX - b.minX, b.maxY - b.minY) > 0.25, `at ${seconds} s the model is a speck: ${JSON.stringify(b)}`);
   }
 
+  // Mountain and valley hinges coloured; a click on a hinge plots its fold angle over the motion.
+  check(info.mountains + info.valleys > 0, `no hinge coloured mountain or valley: ${JSON.stringify(info)}`);
+  {
+    const hinges = await viewer(() => window.phedraViewer.hinges());
+    const at = await viewer((k) => window.phedraViewer.hingeScreen(k), Math.floor(hinges / 2));
+    await page.mouse.click(at[0], at[1]);
+    await page.waitForTimeout(200);
+    const picked = await viewer(() => window.phedraViewer.state().picked);
+    check(picked >= 0, 'a click on a hinge picked none');
+    const points = await page.$eval('#hinge-plot', (e) => e.querySelector('polyline')?.getAttribute('points').split(' ').length ?? 0);
+    check(points === 121, `the fold-angle plot has ${points} points`);
+    const angle = await page.$eval('#hinge-angle', (e) => e.textContent);
+    check(/^hinge \d+ \(vertices \d+-\d+\): -?[\d.e-]+ degrees \((valley|mountain|flat)\)$/.test(angle), `picked hinge line: "${angle}"`);
+  }
+
   // The slider moves the model and t.
   const pose = () => viewer(() => [window.phedraViewer.vertex(5), window.phedraViewer.t(), window.phedraViewer.state().position]);
   const before = await pose();

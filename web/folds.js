@@ -1,0 +1,133 @@
+// Mountain and valley: the hinges of a morph-target glTF coloured by the sign
+// of their fold at the shown pose (FOLD's convention: valley positive), and the
+// dihedral angle of one hinge over the whole motion.
+import * as THREE from 'three';
+import { primitivePanels } from './outline.js';
+
+export const foldColours = { mountain: 0xff7043, valley: 0x42a5f5 };
+
+const a = new THREE.Vector3(), b = new THREE.Vector3(), c = new THREE.Vector3();
+
+/// Unit normal of a panel (Newell's, robust for planar quads and triangles).
+function normal(panel, x, out) {
+  out.set(0, 0, 0);
+  for (let k = 0; k < panel.length; ++k) {
+    const i = 3 * panel[k], j = 3 * panel[(k + 1) % panel.length];
+    out.x += (x[i + 1] - x[j + 1]) * (x[i + 2] + x[j + 2]);
+    out.y += (x[i + 2] - x[j + 2]) * (x[i] + x[j]);
+    out.z += (x[i] - x[j]) * (x[i + 1] + x[j + 1]);
+  }
+  return out.normalize();
+}
+
+export class Folds {
+  /// `gltf`: a loaded morph-target export (null result for the node layout:
+  /// `Folds.of` returns null then).
+  static of(gltf) {
+    const meshes = [];
+    gltf.scene.traverse((o) => { if (o.isMesh && !o.parent?.isMesh && o.geometry.morphAttributes.position) meshes.push(o); });
+    return meshes.length ? new Folds(gltf, meshes) : null;
+  }
+
+  constructor(gltf, meshes) {
+    this.mesh = meshes[0];  // every primitive shares the positions and the targets
+    const json = gltf.parser.json;
+    this.panels = [];
+    for (const mesh of meshes) {
+      const association = gltf.parser.associations.get(mesh);
+      const primitive = json.meshes[association?.meshes ?? 0]?.primitives[association?.primitives ?? 0];
+      this.panels.push(...primitivePanels(mesh.geometry.index.array, primitive?.extras?.phedra_triangles));
+    }
+    // Hinges: an edge two panels share; `from`/`to` as the first panel runs along it.
+    const seen = new Map();
+    this.hinges = [];
+    this.panels.forEach((p, f) => {
+      for (let k = 0; k < p.length; ++k) {
+        const u = p[k], v = p[(k + 1) % p.length];
+        const key = u < v ? `${u},${v}` : `${v},${u}`;
+        if (!seen.has(key)) seen.set(key, { from: u, to: v, f, g: -1 });
+        else if (seen.get(key).g < 0) seen.get(key).g = f;
+      }
+    });
+    for (const h of seen.values()) if (h.g >= 0) this.hinges.push(h);
+    const geometry = this.mesh.geometry;
+    const line = (colour) => {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', geometry.getAttribute('position'));
+      g.morphAttributes.position = geometry.morphAttributes.position;
+      g.morphTargetsRelative = geometry.morphTargetsRelative;
+      g.setIndex([]);
+      const l = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: colour, depthFunc: THREE.LessEqualDepth }));
+      l.morphTargetInfluences = this.mesh.morphTargetInfluences;
+      l.morphTargetDictionary = this.mesh.morphTargetDictionary;
+      l.frustumCulled = false;
+      l.renderOrder = 2;
+      this.mesh.add(l);
+      return l;
+    };
+    this.mountain = line(foldColours.mountain);
+    this.valley = line(foldColours.valley);
+    this.signs = new Int8Array(this.hinges.length);
+    this.positions = new Float32Array(geometry.getAttribute('position').array.length);
+  }
+
+  /// Every vertex as shown now (object space of the mesh: the morph targets applied).
+  shownPositions() {
+    const base = this.mesh.geometry.getAttribute('position').array, out = this.positions;
+    out.set(base);
+    const morphs = this.mesh.geometry.morphAttributes.position, w = this.mesh.morphTargetInfluences;
+    w.forEach((weight, j) => {
+      if (!weight) return;
+      const d = morphs[j].array;
+      for (let i = 0; i < out.length; ++i) out[i] += weight * d[i];
+    });
+    return out;
+  }
+
+  /// Fold angle of hinge `h` in degrees at positions `x` (valley > 0).
+  angle(h, x) {
+    const nf = normal(this.panels[h.f], x, a), ng = normal(this.panels[h.g], x, b);
+    c.set(x[3 * h.to] - x[3 * h.from], x[3 * h.to + 1] - x[3 * h.from + 1], x[3 * h.to + 2] - x[3 * h.from + 2]).normalize();
+    return THREE.MathUtils.radToDeg(Math.atan2(-new THREE.Vector3().crossVectors(nf, ng).dot(c), nf.dot(ng)));
+  }
+
+  /// Colours the hinges by their fold at the shown pose; {mountains, valleys}.
+  update() {
+    const x = this.shownPositions();
+    let changed = false, mountains = 0, valleys = 0;
+    this.hinges.forEach((h, k) => {
+      const angle = this.angle(h, x);
+      const sign = Math.abs(angle) < 1e-6 ? 0 : angle > 0 ? 1 : -1;
+      if (sign !== this.signs[k]) { this.signs[k] = sign; changed = true; }
+      if (sign < 0) ++mountains; else if (sign > 0) ++valleys;
+    });
+    if (changed) {
+      const m = [], v = [];
+      this.hinges.forEach((h, k) => { if (this.signs[k] < 0) m.push(h.from, h.to); else if (this.signs[k] > 0) v.push(h.from, h.to); });
+      this.mountain.geometry.setIndex(m);
+      this.valley.geometry.setIndex(v);
+    }
+    return { mountains, valleys };
+  }
+
+  /// The hinge of panel-triangle hit `hit` (a raycast on a morph mesh) nearest the hit point: its index, or -1.
+  hingeNear(point) {
+    const x = this.shownPositions(), p = this.mesh.worldToLocal(point.clone());
+    let best = -1, distance = Infinity;
+    const s = new THREE.Line3();
+    this.hinges.forEach((h, k) => {
+      s.start.set(x[3 * h.from], x[3 * h.from + 1], x[3 * h.from + 2]);
+      s.end.set(x[3 * h.to], x[3 * h.to + 1], x[3 * h.to + 2]);
+      const d = s.closestPointToPoint(p, true, a).distanceTo(p);
+      if (d < distance) { distance = d; best = k; }
+    });
+    return best;
+  }
+
+  /// The two ends of hinge k as shown (world space), for a marker.
+  ends(k) {
+    const x = this.shownPositions(), h = this.hinges[k];
+    return [new THREE.Vector3(x[3 * h.from], x[3 * h.from + 1], x[3 * h.from + 2]).applyMatrix4(this.mesh.matrixWorld),
+            new THREE.Vector3(x[3 * h.to], x[3 * h.to + 1], x[3 * h.to + 2]).applyMatrix4(this.mesh.matrixWorld)];
+  }
+}
