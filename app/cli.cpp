@@ -41,8 +41,11 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
     app.exit(e, out, err);
     return 0;
   } catch (const CLI::ParseError& e) {
+    // The help of the command being parsed, when there is one.
+    std::string command;
+    for (const CLI::App* sub : app.get_subcommands()) command = sub->get_name() + " ";
     err << "phedra: error: " << e.what() << "\n";
-    err << "Run `phedra --help` for usage.\n";
+    err << "Run `phedra " << command << "--help` for usage.\n";
     return static_cast<int>(ExitCode::bad_input);
   } catch (const InvalidInputError& e) {
     err << "phedra: error: " << (context.preset.empty() ? "" : context.preset + ": ") << e.what() << "\n";

@@ -161,6 +161,11 @@ TEST_CASE("bad input and bad usage: clear message, exit 2, unreadable file: exit
   CHECK_THAT(r.err, Contains(bad.string() + ": signs: expected 1 signs"));
   CHECK(phedra_cli({"info", (dir / "missing.json").string()}).code == 3);
   CHECK(phedra_cli({"info"}).code == 2);
+  // A usage error points at the command's own help.
+  const Run usage = phedra_cli({"sample", presets + "/default.json", "--frobnicate"});
+  CHECK(usage.code == 2);
+  CHECK_THAT(usage.err, Contains("Run `phedra sample --help` for usage."));
+  CHECK_THAT(phedra_cli({"frobnicate"}).err, Contains("Run `phedra --help` for usage."));
   CHECK(phedra_cli({"frobnicate"}).code == 2);
   CHECK(phedra_cli({"sample", presets + "/default.json"}).code == 2);
   CHECK(phedra_cli({"sample", presets + "/default.json", "--fraction", "2"}).code == 2);

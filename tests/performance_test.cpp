@@ -101,6 +101,11 @@ TEST_CASE("phedra bench --quick: every figure finite, the accuracy and closure f
   std::ostringstream text;
   text << report;
   CHECK(text.str().find("evaluate.linearity") != std::string::npos);
+  // No verdict on the targets from small cases.
+  CHECK(text.str().find(" met ") == std::string::npos);
+  CHECK(text.str().find("MISSED") == std::string::npos);
+  CHECK(text.str().find("every target met") == std::string::npos);
+  CHECK(text.str().find("quick run: small cases, not compared with the targets") != std::string::npos);
 }
 
 TEST_CASE("phedra bench --quick --json -o FILE writes the report, bad options are refused", "[performance][cli]") {
