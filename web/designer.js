@@ -6,6 +6,7 @@
 import * as THREE from 'three';
 import { createStage } from './scene.js';
 import { frameBox } from './framing.js';
+import { foldAngle, foldColours, hingesOf } from './folds.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -273,8 +274,47 @@ function rebuildGeometry() {
   edges.geometry = lineGeometry;
   // Panel outlines help on small models and only cost drawing time on large ones.
   edges.visible = count <= 5000;
+  // Mountain and valley hinges, coloured by their fold at the slider's t (outlined models only).
+  const panels = [];
+  for (let f = 0; f < faces.length; f += 4) panels.push(Array.from(faces.subarray(f, f + 4)));
+  hinges = edges.visible ? hingesOf(panels) : [];
+  hingePanels = panels;
+  hingeSigns = new Int8Array(hinges.length);
+  for (const line of [mountainLines, valleyLines]) {
+    line.geometry.dispose();
+    line.geometry = new THREE.BufferGeometry();
+    line.geometry.setAttribute('position', geometry.getAttribute('position'));
+    line.geometry.setIndex([]);
+  }
   updatePositions();
 }
+
+let hinges = [], hingePanels = [], hingeSigns = new Int8Array(0);
+const foldLine = (colour) => {
+  const line = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: colour, depthFunc: THREE.LessEqualDepth }));
+  line.renderOrder = 1;
+  scene.add(line);
+  return line;
+};
+const mountainLines = foldLine(foldColours.mountain), valleyLines = foldLine(foldColours.valley);
+/// The hinges' mountain/valley colours at positions x; the index buffers change only when a sign does.
+function colourFolds(x) {
+  let changed = false, mountains = 0, valleys = 0;
+  hinges.forEach((h, k) => {
+    const angle = foldAngle(hingePanels[h.f], hingePanels[h.g], h.from, h.to, x);
+    const sign = Math.abs(angle) < 1e-6 ? 0 : angle > 0 ? 1 : -1;
+    if (sign !== hingeSigns[k]) { hingeSigns[k] = sign; changed = true; }
+    if (sign < 0) ++mountains; else if (sign > 0) ++valleys;
+  });
+  if (changed) {
+    const m = [], v = [];
+    hinges.forEach((h, k) => { if (hingeSigns[k] < 0) m.push(h.from, h.to); else if (hingeSigns[k] > 0) v.push(h.from, h.to); });
+    mountainLines.geometry.setIndex(m);
+    valleyLines.geometry.setIndex(v);
+  }
+  foldCounts = { mountains, valleys };
+}
+let foldCounts = { mountains: 0, valleys: 0 };
 
 /// Evaluates the motion at the slider's t and uploads the positions.
 function updatePositions() {
@@ -284,6 +324,7 @@ function updatePositions() {
   const attribute = surface.geometry.getAttribute('position');
   attribute.array.set(positions);
   attribute.needsUpdate = true;
+  if (hinges.length) colourFolds(positions);
   // (flat shading: the shader derives the normals, none to compute)
   surface.geometry.computeBoundingSphere();
   $('t').textContent = format(t);
@@ -1126,6 +1167,8 @@ requestAnimationFrame(frame);
 window.phedraDesigner = {
   ready: info !== null,
   info: () => info,
+  /// Hinges coloured mountain / valley at the slider's t.
+  folds: () => foldCounts,
   preset: () => clone(preset),
   presetText,
   message: () => $('message').textContent,

@@ -9,7 +9,7 @@ export const foldColours = { mountain: 0xff7043, valley: 0x42a5f5 };
 const a = new THREE.Vector3(), b = new THREE.Vector3(), c = new THREE.Vector3();
 
 /// Unit normal of a panel (Newell's, robust for planar quads and triangles).
-function normal(panel, x, out) {
+export function normal(panel, x, out) {
   out.set(0, 0, 0);
   for (let k = 0; k < panel.length; ++k) {
     const i = 3 * panel[k], j = 3 * panel[(k + 1) % panel.length];
@@ -18,6 +18,31 @@ function normal(panel, x, out) {
     out.z += (x[i] - x[j]) * (x[i + 1] + x[j + 1]);
   }
   return out.normalize();
+}
+
+/// Fold angle in degrees (valley > 0) of the hinge `from` -> `to` between panels
+/// f (which runs along it that way) and g, at positions x (3 a vertex).
+export function foldAngle(f, g, from, to, x) {
+  const nf = normal(f, x, a), ng = normal(g, x, b);
+  c.set(x[3 * to] - x[3 * from], x[3 * to + 1] - x[3 * from + 1], x[3 * to + 2] - x[3 * from + 2]).normalize();
+  return THREE.MathUtils.radToDeg(Math.atan2(-new THREE.Vector3().crossVectors(nf, ng).dot(c), nf.dot(ng)));
+}
+
+/// The hinges of `panels` (lists of vertex indices, one orientation): edges two
+/// panels share, [{from, to, f, g}] with f the panel that runs from -> to.
+export function hingesOf(panels) {
+  const seen = new Map(), out = [];
+  panels.forEach((p, f) => {
+    for (let k = 0; k < p.length; ++k) {
+      const u = p[k], v = p[(k + 1) % p.length];
+      if (u === v) continue;
+      const key = u < v ? `${u},${v}` : `${v},${u}`;
+      if (!seen.has(key)) seen.set(key, { from: u, to: v, f, g: -1 });
+      else if (seen.get(key).g < 0) seen.get(key).g = f;
+    }
+  });
+  for (const h of seen.values()) if (h.g >= 0) out.push(h);
+  return out;
 }
 
 export class Folds {
@@ -38,18 +63,7 @@ export class Folds {
       const primitive = json.meshes[association?.meshes ?? 0]?.primitives[association?.primitives ?? 0];
       this.panels.push(...primitivePanels(mesh.geometry.index.array, primitive?.extras?.phedra_triangles));
     }
-    // Hinges: an edge two panels share; `from`/`to` as the first panel runs along it.
-    const seen = new Map();
-    this.hinges = [];
-    this.panels.forEach((p, f) => {
-      for (let k = 0; k < p.length; ++k) {
-        const u = p[k], v = p[(k + 1) % p.length];
-        const key = u < v ? `${u},${v}` : `${v},${u}`;
-        if (!seen.has(key)) seen.set(key, { from: u, to: v, f, g: -1 });
-        else if (seen.get(key).g < 0) seen.get(key).g = f;
-      }
-    });
-    for (const h of seen.values()) if (h.g >= 0) this.hinges.push(h);
+    this.hinges = hingesOf(this.panels);
     const geometry = this.mesh.geometry;
     const line = (colour) => {
       const g = new THREE.BufferGeometry();
@@ -86,9 +100,7 @@ export class Folds {
 
   /// Fold angle of hinge `h` in degrees at positions `x` (valley > 0).
   angle(h, x) {
-    const nf = normal(this.panels[h.f], x, a), ng = normal(this.panels[h.g], x, b);
-    c.set(x[3 * h.to] - x[3 * h.from], x[3 * h.to + 1] - x[3 * h.from + 1], x[3 * h.to + 2] - x[3 * h.from + 2]).normalize();
-    return THREE.MathUtils.radToDeg(Math.atan2(-new THREE.Vector3().crossVectors(nf, ng).dot(c), nf.dot(ng)));
+    return foldAngle(this.panels[h.f], this.panels[h.g], h.from, h.to, x);
   }
 
   /// Colours the hinges by their fold at the shown pose; {mountains, valleys}.

@@ -229,6 +229,11 @@ try {
     });
     check(Math.abs(tick - thumb) <= 3, `the t* tick is at x ${tick.toFixed(0)}, the thumb at t* at ${thumb.toFixed(0)}`);
   }
+  // Hinges coloured mountain and valley at the slider's t.
+  {
+    const f = await api(() => window.phedraDesigner.folds());
+    check(f.mountains + f.valleys > 0, `no hinge coloured: ${JSON.stringify(f)}`);
+  }
   // After an edit the slider is at the new t*, where the surface passes through the handles.
   {
     const now = await api(() => window.phedraDesigner.info());
