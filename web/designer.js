@@ -219,32 +219,23 @@ function updateUndo() {
   $('undo').title = history.length ? `undo the last ${history[history.length - 1].what} (Ctrl+Z)` : 'nothing to undo';
   $('redo').title = future.length ? `redo the ${future[future.length - 1].what} (Ctrl+Shift+Z)` : 'nothing to redo';
 }
-function undo() {
-  const entry = history.pop();
+/// Moves one design from the `from` stack to the `to` stack (undo: history ->
+/// future; redo: the other way) and shows it; `verb` says which it was.
+function travel(from, to, verb) {
+  const entry = from.pop();
   if (!entry) return;
   const now = clone(preset);
   if (apply(entry.preset, { record: false })) {
-    future.push({ preset: now, what: entry.what, origin: loadedName });
+    to.push({ preset: now, what: entry.what, origin: loadedName });
     loadedName = entry.origin;
-    showRepair(entry.what === 'repair' ? 'repair undone: the previous design is back' : `${entry.what} undone`);
+    showRepair(entry.what === 'repair' && verb === 'undone' ? 'repair undone: the previous design is back' : `${entry.what} ${verb}`);
   } else {
-    history.push(entry);
+    from.push(entry);
   }
   updateUndo();
 }
-function redo() {
-  const entry = future.pop();
-  if (!entry) return;
-  const now = clone(preset);
-  if (apply(entry.preset, { record: false })) {
-    history.push({ preset: now, what: entry.what, origin: loadedName });
-    loadedName = entry.origin;
-    showRepair(`${entry.what} redone`);
-  } else {
-    future.push(entry);
-  }
-  updateUndo();
-}
+const undo = () => travel(history, future, 'undone');
+const redo = () => travel(future, history, 'redone');
 window.addEventListener('keydown', (e) => {
   if (!(e.ctrlKey || e.metaKey) || e.target instanceof HTMLTextAreaElement || e.target instanceof HTMLInputElement) return;
   const key = e.key.toLowerCase();
