@@ -7,6 +7,7 @@ import * as THREE from 'three';
 import { createStage } from './scene.js';
 import { frameBox } from './framing.js';
 import { foldAngle, foldColours, hingesOf } from './folds.js';
+import { readableNumbers } from './framing.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -23,8 +24,11 @@ camera.up.set(0, 0, 1);  // presets are z-up
 // panel (or folded through its hinge) at the slider's t.
 const validityColours = { simple: 0x7fb3e0, invalid: 0xe53935, colliding: 0xff9800 };
 const surface = new THREE.Mesh(new THREE.BufferGeometry(), ['simple', 'invalid', 'colliding'].map((k) =>
-  new THREE.MeshLambertMaterial({ color: validityColours[k], side: THREE.DoubleSide, flatShading: true })));
-const edges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x20303f }));
+  // Pushed back a little in depth, so that the panel edges and fold lines drawn on them do not flicker.
+  new THREE.MeshLambertMaterial({ color: validityColours[k], side: THREE.DoubleSide, flatShading: true,
+                                  polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })));
+// Without depth writes: the fold lines drawn after them cover them instead of fighting them pixel by pixel.
+const edges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x20303f, depthWrite: false }));
 scene.add(surface, edges);
 const handles = new THREE.Group();
 scene.add(handles);
@@ -569,7 +573,7 @@ function screenOf(position) {
 /// The status when the last edit was accepted: what the buildability report
 /// says ("buildable over [a, b]", or what is wrong), never just "valid".
 function statusText() {
-  if (buildability) return buildability.summary;
+  if (buildability) return readableNumbers(buildability.summary);
   if (invalidPanels.size) {
     const list = [...invalidPanels].slice(0, 8).join(', ') + (invalidPanels.size > 8 ? ', …' : '');
     return `not buildable: ${invalidPanels.size} of ${info.faces} panels cannot be cut as one plate (panels ${list})`;
@@ -781,8 +785,16 @@ function rayAt(event) {
 
 renderer.domElement.addEventListener('pointerdown', (event) => {
   rayAt(event);
-  const hit = raycaster.intersectObjects(Object.values(handleMeshes), false)[0];
-  if (!hit) return;
+  // Of the handles under the pointer (they overlap where heights are close),
+  // the one whose centre is nearest the pointer on screen, not the nearest in depth.
+  const hits = raycaster.intersectObjects(Object.values(handleMeshes), false);
+  if (!hits.length) return;
+  const onScreen = (h) => {
+    const { key, index } = h.object.userData.refs[h.instanceId];
+    const [x, y] = screenOf(handlePosition(key, index));
+    return Math.hypot(x - event.clientX, y - event.clientY);
+  };
+  const hit = hits.reduce((best, h) => (onScreen(h) < onScreen(best) ? h : best));
   const { key, index } = hit.object.userData.refs[hit.instanceId];
   const kind = hit.object.userData.kind;
   const at = handlePosition(key, index);

@@ -52,7 +52,8 @@ function edgeIndex(panels) {
 export function addPanelOutlines(gltf, invalidPanels = []) {
   const json = gltf.parser.json;
   const invalid = new Set(invalidPanels);
-  const lineMaterial = new THREE.LineBasicMaterial({ color: 0x1b2028 });
+  // No depth writes: the fold lines drawn after them cover them instead of fighting them pixel by pixel.
+  const lineMaterial = new THREE.LineBasicMaterial({ color: 0x1b2028, depthWrite: false });
   const redMaterial = new THREE.MeshBasicMaterial({ color: 0xe53935, side: THREE.DoubleSide,
     polygonOffset: true, polygonOffsetFactor: -1, polygonOffsetUnits: -1 });
   let edges = 0, red = 0;
@@ -88,6 +89,8 @@ export function addPanelOutlines(gltf, invalidPanels = []) {
     attach(lines);
     // Back faces darker than front faces (one material a member, double-sided in the file).
     if (!backs.has(mesh.material)) {
+      // Faces pushed back a little in depth: the edges and fold lines on them do not flicker.
+      Object.assign(mesh.material, { polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 });
       const back = mesh.material.clone();
       back.side = THREE.BackSide;
       back.color = mesh.material.color.clone().multiplyScalar(0.45);

@@ -8,7 +8,7 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
 import { Folds, foldColours } from './folds.js';
-import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, motionBox } from './framing.js';
+import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, motionBox, readableNumbers } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
 const { renderer, scene, camera, controls } = createStage();
@@ -84,7 +84,7 @@ function showPicked(t) {
     cursor.setAttribute('x2', x);
   }
 }
-const plot = { width: 330, height: 110, left: 34, right: 6, top: 6, bottom: 18 };
+const plot = { width: 330, height: 122, left: 34, right: 6, top: 18, bottom: 18 };
 const plotX = (t) => plot.left + (t - info.t_lambda) / (info.t_mu - info.t_lambda) * (plot.width - plot.left - plot.right);
 const plotY = (angle) => plot.top + (180 - angle) / 360 * (plot.height - plot.top - plot.bottom);
 
@@ -104,15 +104,16 @@ function pickHinge(point) {
     samples.push([tAt(seconds), folds.angle(folds.hinges[picked], folds.shownPositions())]);
   }
   setTime(keep);
-  const svg = ['<svg xmlns="http://www.w3.org/2000/svg" width="330" height="110" role="img" aria-label="fold angle over the motion">'];
+  const svg = ['<svg xmlns="http://www.w3.org/2000/svg" width="330" height="122" role="img" aria-label="fold angle over the motion">',
+               `<text x="${plot.left}" y="9" font-size="10" fill="#9fb3c8">fold angle (degrees, valley &gt; 0) against t</text>`];
   for (const a of [-180, -90, 0, 90, 180]) {
     svg.push(`<line x1="${plot.left}" x2="${plot.width - plot.right}" y1="${plotY(a)}" y2="${plotY(a)}" stroke="#3a434e"/>`,
              `<text x="${plot.left - 4}" y="${plotY(a) + 4}" text-anchor="end" font-size="10" fill="#9fb3c8">${a}</text>`);
   }
   svg.push(`<polyline fill="none" stroke="#ffeb3b" stroke-width="1.5" points="${samples.map(([t, a]) => `${plotX(t).toFixed(1)},${plotY(a).toFixed(1)}`).join(' ')}"/>`,
            `<line class="cursor" y1="${plot.top}" y2="${plot.height - plot.bottom}" stroke="#e8e8e8" stroke-dasharray="3 2"/>`,
-           `<text x="${plot.left}" y="${plot.height - 4}" font-size="10" fill="#9fb3c8">t = ${format(info.t_lambda)}</text>`,
-           `<text x="${plot.width - plot.right}" y="${plot.height - 4}" text-anchor="end" font-size="10" fill="#9fb3c8">t = ${format(info.t_mu)} (fold angle in degrees, valley > 0)</text>`,
+           `<text x="${plot.left}" y="${plot.height - 4}" font-size="10" fill="#9fb3c8">${format(info.t_lambda)} (t&#955;)</text>`,
+           `<text x="${plot.width - plot.right}" y="${plot.height - 4}" text-anchor="end" font-size="10" fill="#9fb3c8">(t&#956;) ${format(info.t_mu)}</text>`,
            '</svg>');
   $('hinge-plot').innerHTML = svg.join('');
   showPicked(tAt(position));
@@ -225,7 +226,7 @@ function showModel(loaded) {
   // What the command said of the design when it wrote the file (docs/design.md, Buildable designs).
   if (info.buildability) {
     const b = info.buildability;
-    $('buildability').textContent = b.summary + (outlines.invalid ? ' (invalid panels in red)' : '');
+    $('buildability').textContent = readableNumbers(b.summary) + (outlines.invalid ? ' (invalid panels in red)' : '');
     $('buildability').style.color = b.buildable ? '#a5d6a7' : '#ffcc80';
   }
   const panels = info.panels ?? json.nodes.length;

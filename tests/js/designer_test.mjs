@@ -406,7 +406,8 @@ try {
     await page.mouse.up();
     await page.waitForTimeout(200);
     const uAfter = await api(() => window.phedraDesigner.preset().grid.u_heights[2]);
-    check(Math.abs(uAfter - uBefore) > 1e-3, `dragging the height handle left grid.u_heights[2] at ${uAfter}`);
+    if (!(Math.abs(uAfter - uBefore) > 1e-3) && screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-height-drag.png') });
+    check(Math.abs(uAfter - uBefore) > 1e-3, `dragging the height handle left grid.u_heights[2] at ${uAfter} (pointer at ${heightAt})`);
     const onAxis = await api(() => window.phedraDesigner.handlePosition('grid.u_heights', 2));
     check(Math.abs(onAxis[2] - uAfter) < 1e-5, `the height handle (single precision) is at ${onAxis}, the preset says ${uAfter}`);
     check(await accepted(), `after dragging a height: ${await status()}`);
