@@ -1,12 +1,13 @@
-// phedra outlines PRESET -o FILE.svg|.dxf [--tabs] [--tab-depth R] [--spacing R]
+// phedra outlines PRESET -o FILE.pdf|.svg|.png|.dxf [--pieces MODE] [--page SIZE] [--scale S] [--no-tabs]
 
-#include "commands.h"
-#include "phedra/errors.h"
-#include "phedra/flat_outlines.h"
-#include "phedra/number_format.h"
-#include "support.h"
 #include "buildability_warning.h"
+#include "commands.h"
+#include "phedra/cut_sheets.h"
+#include "phedra/cut_sheets_pdf.h"
+#include "phedra/errors.h"
+#include "support.h"
 
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -17,40 +18,98 @@ namespace {
 struct OutlinesCommandOptions {
   std::string preset;
   std::string output;
-  OutlineOptions outline;
+  std::string pieces = "strips";
+  std::string page = "a4";
+  double scale = 0.0;  ///< 0: from --model-size
+  CutSheetOptions sheets;
 };
+
+std::string six(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+/// out.svg -> out-3.svg (one file per page when there are several).
+std::string numbered(const std::string& path, std::size_t page, std::size_t pages) {
+  if (pages == 1) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "-" + std::to_string(page + 1) + p.extension().string())).string();
+}
 
 }  // namespace
 
 void add_outlines_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<OutlinesCommandOptions>();
   CLI::App* sub = app.add_subcommand(
-      "outlines", "Fabrication: the flat outline of every panel on one sheet, labelled with its panel id (P<k>, as in "
-                  "the exports) and the hinge id of each edge (H<k>: join the edges with the same label), optional "
-                  "glue tabs; SVG (in mm, --scale per model unit) or DXF (layers CUT, FOLD, LABELS)");
+      "outlines",
+      "Cut sheets: the panels unfolded into connected pieces (by default one per strip) with mountain and valley "
+      "fold lines, glue tabs and matching seam labels (S<k>), each panel labelled with its number in the exports "
+      "(P<k>), laid out in assembly order on pages with a title, legend and scale bar. PDF (every page), SVG or "
+      "PNG (one file per page: out-1.svg, out-2.svg, ... when there are several) or DXF (pages side by side; "
+      "layers CUT, MOUNTAIN, VALLEY, TAB_FOLD, LABELS)");
   add_preset_argument(sub, o->preset);
-  sub->add_option("-o,--output", o->output, "Output file: .svg or .dxf")->required();
-  sub->add_flag("--tabs", o->outline.tabs, "A glue tab on one side of every hinge (on the panel with the lower id)");
-  sub->add_option("--tab-depth", o->outline.tab_depth, "Tab depth relative to its hinge's length, in (0, 0.5)")
+  sub->add_option("-o,--output", o->output, "Output file: .pdf, .svg, .png or .dxf")->required();
+  sub->add_option("--pieces", o->pieces,
+                  "strips (the panels between two profiles), columns (along the trajectory), cells (each member of "
+                  "an array on its own, walls glued face to face) or panels (one by one)")
       ->capture_default_str();
-  sub->add_option("--spacing", o->outline.spacing, "Gap between panels relative to the model size")
+  sub->add_option("--page", o->page, "Page size: a4, letter, a3 or WxH in mm (e.g. 300x200)")->capture_default_str();
+  CLI::Option* scale = sub->add_option("--scale", o->scale, "Millimetres on the sheet per model unit (default: the model size becomes "
+                                       "--model-size mm)");
+  sub->add_option("--model-size", o->sheets.model_mm, "Without --scale: the model's size (bounding-box diagonal at "
+                                                      "t*) on paper, in mm")
       ->capture_default_str();
-  sub->add_option("--scale", o->outline.scale, "Millimetres on the sheet per model unit")->capture_default_str();
-  sub->callback([o, &context] {
+  sub->add_flag("!--no-tabs", o->sheets.tabs, "No glue tabs on the seams");
+  sub->add_flag("--tabs", o->sheets.tabs, "Glue tabs on the seams (the default)");
+  sub->add_option("--tab-depth", o->sheets.tab_depth, "Tab depth relative to its seam's length, in (0, 0.5); at "
+                                                      "most 6 mm")
+      ->capture_default_str();
+  sub->callback([o, scale, &context] {
     const std::string ext = std::filesystem::path(o->output).extension().string();
-    if (ext != ".svg" && ext != ".dxf") {
-      throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .svg or .dxf)");
+    if (ext != ".svg" && ext != ".dxf" && ext != ".pdf" && ext != ".png") {
+      throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .pdf, .svg, .png or .dxf)");
     }
+    o->sheets.mode = piece_mode_from_string(o->pieces);
+    o->sheets.page = page_size_from_string(o->page);
+    if (scale->count() > 0) o->sheets.scale = o->scale;
+    if (!(o->sheets.model_mm > 0.0)) throw InvalidInputError("--model-size", "must be a positive number of mm");
     const Design design = load(context, o->preset);
-    const OutlineSheet sheet = flat_outlines(design, o->outline);
-    emit(ext == ".svg" ? outlines_svg(sheet) : outlines_dxf(sheet), o->output, o->preset, context.out);
+    const CutSheets sheets = cut_sheets(design, o->sheets);
+    // Everything is drawn before anything is written.
+    std::vector<std::pair<std::string, std::string>> files;
+    if (ext == ".pdf") {
+      files.push_back({o->output, cut_sheets_pdf(sheets)});
+    } else if (ext == ".dxf") {
+      files.push_back({o->output, cut_sheets_dxf(sheets)});
+    } else {
+      for (std::size_t k = 0; k < sheets.pages.size(); ++k) {
+        files.push_back({numbered(o->output, k, sheets.pages.size()),
+                         ext == ".svg" ? sheet_page_svg(sheets, k) : sheet_page_png(sheets, k)});
+      }
+    }
+    for (const auto& [path, content] : files) emit(content, path, o->preset, context.out);
     const BuildabilityReport buildability = assess_for_output(design);
-    context.out << "wrote " << o->output << ": " << sheet.panels.size() << " panel outlines, " << sheet.hinges
-                << " hinges" << (o->outline.tabs ? " with a tab each" : "") << ", sheet " << format_number(sheet.width)
-                << " x " << format_number(sheet.height) << " mm\n";
+    std::size_t panels = 0;
+    for (const Piece& piece : sheets.pieces) panels += piece.panels.size();
+    context.out << "wrote " << (files.size() == 1 ? o->output : files.front().first + " ... " + files.back().first)
+                << ": " << sheets.pages.size() << (sheets.pages.size() == 1 ? " page" : " pages") << " of "
+                << six(sheets.page.x()) << " x " << six(sheets.page.y()) << " mm, " << sheets.pieces.size()
+                << " pieces (" << to_string(sheets.mode) << ") of " << panels << " panels, " << sheets.folds
+                << " fold lines, " << sheets.seams << " seams to glue (" << sheets.tabs << " tabs), scale "
+                << six(sheets.scale) << " mm per model unit\n";
+    if (sheets.untabbed_seams > 0) {
+      context.out << "note: " << sheets.untabbed_seams << " seams have no room for a tab on either side: "
+                  << "glue them with tape\n";
+    }
+    if (sheets.smallest_label < readable_label_mm) {
+      context.err << "phedra: warning: the smallest label is " << six(sheets.smallest_label)
+                  << " mm high (panels too small for it); a larger --scale or --model-size makes every label "
+                  << "larger\n";
+    }
     if (!buildability.panels_simple()) {
       context.err << "phedra: warning: " << buildability.invalid.size() << " of " << buildability.panels
-                  << " panels cannot be cut as one plate (outlined in red on the sheet): panels "
+                  << " panels cannot be cut as one plate (filled red on the sheets): panels "
                   << buildability.invalid_list() << "; `phedra check " << o->preset
                   << "` names the cause of each and the field to change\n";
     }

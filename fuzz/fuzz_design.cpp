@@ -7,7 +7,7 @@
 #include "phedra/assembly_check.h"
 #include "phedra/crease_pattern.h"
 #include "phedra/developed_pattern.h"
-#include "phedra/flat_outlines.h"
+#include "phedra/cut_sheets.h"
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/self_intersection.h"
 #include "phedra/design.h"
@@ -103,7 +103,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const SelfIntersectionReport intersections = find_self_intersections(design, {.samples_per_side = 8});
     must(intersections.free_lower <= intersections.free_upper);
     metamaterial_metrics(design, {.samples = 5}).to_svg();
-    outlines_dxf(flat_outlines(design));
+    const CutSheets sheets = cut_sheets(design);
+    cut_sheets_dxf(sheets);
+    sheet_page_svg(sheets, 0);
   } catch (const Error&) {
     // A clear answer to a bad input (or an internal error refusing a non-finite
     // number, which the writers raise on purpose: treat as a finding).

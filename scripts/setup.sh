@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what phedra needs from Debian packages, only what is missing
-# (chromium runs the viewer's browser test; emscripten and node-acorn build the
+# (cairo and the DejaVu fonts draw the PDF and PNG cut sheets of `outlines`;
+# chromium runs the viewer's browser test; emscripten and node-acorn build the
 # browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
 # software WebGL renderer bench/designer.mjs measures; Blender imports and plays
 # the glTF exports in tests/blender), then the npm packages of web/
@@ -12,7 +13,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  catch2 libbenchmark-dev libnlopt-cxx-dev
+  catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
   blender

@@ -1,0 +1,139 @@
+#pragma once
+// Cut sheets (issue 17): the panels unfolded into connected pieces that a maker
+// cuts out, folds along marked lines and glues along labelled seams, laid out
+// in assembly order on printable pages.
+//
+// A piece is a set of panels joined by hinges, unfolded flat: each panel keeps
+// its true shape, seen from its front (the side its normal points to, as in
+// the exports), so mountain and valley are read on the printed side. By default
+// each strip (the panels between two profiles of a member) is one piece;
+// `columns` joins the panels along the trajectory instead, `cells` unfolds each
+// member of an array on its own (walls two cells share appear in both cells:
+// glue them face to face), `panels` gives every panel its own piece. A piece
+// that would overlap itself, or outgrow the page, is split. Hinges between
+// pieces are seams: labelled S<k> on every side, a glue tab on one side.
+// Panels that cannot be cut as one plate (bow-ties, degenerate) are pieces of
+// their own, filled red.
+
+#include "phedra/design.h"
+#include "phedra/panel_shape.h"
+#include "phedra/sheet_geometry.h"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+enum class PieceMode { strips, columns, cells, panels };
+PieceMode piece_mode_from_string(const std::string& name);  ///< throws InvalidInputError("--pieces")
+std::string to_string(PieceMode mode);
+
+enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame };
+enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable };
+enum class TextRole { panel, seam, title, legend, note };
+
+struct SheetLine {
+  Vec2 a, b;
+  LineStyle style = LineStyle::cut;
+};
+struct SheetFill {
+  Polygon2 outline;
+  FillStyle style = FillStyle::tab;
+  std::optional<std::size_t> panel;  ///< not_cuttable: the panel (P<k>)
+};
+/// A label: its text fills `box` (capital height = box.height, advance = box.width), reading along box.axis.
+struct SheetText {
+  std::string text;
+  Box2 box;
+  TextRole role = TextRole::panel;
+};
+
+/// A panel of a piece: its outline in the piece (mm), its corners' mesh vertices.
+struct PiecePanel {
+  std::size_t panel = 0;                  ///< P<k>: the panel's number in the exports
+  std::size_t member = 0, row = 0, column = 0;
+  Polygon2 outline;                       ///< 3 or 4 corners, counter-clockwise on the sheet
+  std::vector<std::size_t> vertices;      ///< mesh vertex of each corner
+  PanelShape shape = PanelShape::convex;
+};
+
+/// A hinge inside a piece: a fold line between two of its panels.
+struct PieceFold {
+  std::size_t first = 0, second = 0;      ///< indices into Piece::panels
+  Vec2 a, b;                              ///< the line on the sheet (mm)
+  double angle_degrees = 0.0;             ///< fold angle at t* (> 0 valley, seen from the printed side)
+  LineStyle style = LineStyle::valley;    ///< mountain, valley or flat
+};
+
+/// One side of a seam: panel `panel`'s edge from corner `edge` to the next.
+struct SeamSide {
+  std::size_t seam = 0;                   ///< S<k>, from 1
+  std::size_t panel = 0;                  ///< index into Piece::panels
+  std::size_t edge = 0;
+  std::optional<Polygon2> tab;            ///< the glue tab on this side, if any
+  bool on_fold = false;                   ///< a fold line of this piece that a third panel (a wall) is glued to
+};
+
+struct Piece {
+  std::vector<PiecePanel> panels;
+  std::vector<PieceFold> folds;
+  std::vector<SeamSide> seams;
+  std::vector<SheetText> labels;          ///< P<k> inside each panel, S<k> along each seam side
+  bool cuttable = true;                   ///< false: one panel that is not a simple polygon
+  /// Everything drawn: cut lines around it, fold lines, tab folds; tab and red fills.
+  std::vector<SheetLine> lines() const;
+  std::vector<SheetFill> fills() const;
+  std::vector<Vec2> points() const;       ///< every outline and tab corner
+};
+
+struct CutSheetOptions {
+  PieceMode mode = PieceMode::strips;
+  bool tabs = true;
+  double tab_depth = 0.12;                ///< relative to the seam's length (at most max_tab_mm)
+  double max_tab_mm = 6.0;
+  std::optional<double> scale;            ///< mm per model unit; unset: the model size becomes `model_mm`
+  double model_mm = 200.0;
+  Vec2 page = Vec2(210.0, 297.0);         ///< mm (A4 portrait)
+  double margin = 10.0;                   ///< mm around the page's content
+  double gap = 3.0;                       ///< mm between pieces
+};
+/// "a4", "letter", "a3" or "WxH" in mm.
+Vec2 page_size_from_string(const std::string& name);  ///< throws InvalidInputError("--page")
+
+struct SheetPage {
+  std::vector<SheetLine> lines;
+  std::vector<SheetFill> fills;
+  std::vector<SheetText> texts;
+  std::vector<std::size_t> pieces;        ///< indices into CutSheets::pieces on this page
+};
+
+struct CutSheets {
+  std::string name;
+  PieceMode mode = PieceMode::strips;
+  double scale = 10.0;                    ///< mm per model unit
+  Vec2 page;                              ///< mm
+  Box2 content;                           ///< where pieces go on every page
+  std::vector<Piece> pieces;              ///< placed on their pages (page coordinates, mm, y up)
+  std::vector<std::size_t> piece_page;    ///< the page of each piece
+  std::vector<SheetPage> pages;
+  std::size_t seams = 0, folds = 0, tabs = 0;
+  std::size_t untabbed_seams = 0;         ///< seams with no room for a tab on any side
+  double smallest_label = 0.0;            ///< mm (capital height)
+};
+
+/// Smallest readable capital height (mm) the report warns below.
+constexpr double readable_label_mm = 1.2;
+
+/// The pieces, unfolded and labelled, in piece coordinates (mm), then laid out on pages.
+CutSheets cut_sheets(const Design& design, const CutSheetOptions& options = {});
+
+/// Renderers: one SVG per page (mm), a DXF of every page side by side (layers CUT,
+/// MOUNTAIN, VALLEY, TAB_FOLD, LABELS), and (cut_sheets_pdf.h) PDF and PNG.
+std::string sheet_page_svg(const CutSheets& sheets, std::size_t page);
+std::string cut_sheets_dxf(const CutSheets& sheets);
+
+/// Font size giving capital height h (DejaVu Sans and Helvetica: capitals 0.72 em).
+double font_size_for_capitals(double h);
+
+}  // namespace phedra

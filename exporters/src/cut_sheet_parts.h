@@ -1,0 +1,30 @@
+#pragma once
+// The stages of cut_sheets (cut_sheets.h): unfolding pieces, placing their
+// labels, laying them out on pages.
+
+#include "phedra/cut_sheets.h"
+
+namespace phedra::sheets {
+
+/// Pieces in piece coordinates (mm): unfolded, folds and seams found, tabs chosen.
+/// `fit`: the largest box (mm) a piece may grow to (either way round), tabs aside.
+std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& options, double scale, Vec2 fit,
+                                 std::size_t& seams);
+
+/// Fills piece.labels: S<k> along every seam side, then P<k> inside every panel.
+void place_labels(Piece& piece);
+
+/// Estimated advance of `text` at capital height `height` (the renderers stretch it to exactly this).
+double text_width(const std::string& text, double height);
+
+/// The largest label box (capital height at most max_height) inside `outline`,
+/// along edge `edge` (from corner edge to the next; reading upright either
+/// way) or, without edge, centred on the panel; clear of `avoid`. Nothing if
+/// not even a tenth of a millimetre fits.
+std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t> edge, const std::string& text,
+                              double max_height, const std::vector<Box2>& avoid);
+
+/// The same rectangle, read the other way when its text would be upside down (y up).
+Box2 upright(const Box2& box);
+
+}  // namespace phedra::sheets

@@ -1,0 +1,324 @@
+// Cut sheets (cut_sheets.h): pieces laid out in assembly order on pages, with a
+// title, a legend and a scale bar on every page.
+
+#include "phedra/cut_sheets.h"
+
+#include "cut_sheet_parts.h"
+#include "phedra/errors.h"
+#include "phedra/number_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <regex>
+
+namespace phedra {
+namespace {
+
+using sheets::text_width;
+
+constexpr double header_mm = 28.0;  ///< title, up to three legend rows
+constexpr double footer_mm = 6.0;
+
+std::string six(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+/// A rigid motion of the sheet: p -> origin + s * axis + t * up for p's coordinates (s, t) in `from`.
+struct Placement {
+  Box2 from;      ///< the piece's box in piece coordinates
+  bool turn = false;
+  Vec2 corner;    ///< the page position of the placed box's lower-left corner
+  Vec2 map(const Vec2& p) const {
+    const Vec2 d = p - from.origin;
+    const double s = d.dot(from.axis), t = d.dot(from.up());
+    return corner + (turn ? Vec2(from.height - t, s) : Vec2(s, t));
+  }
+  Vec2 map_direction(const Vec2& v) const {
+    const double s = v.dot(from.axis), t = v.dot(from.up());
+    return turn ? Vec2(-t, s) : Vec2(s, t);
+  }
+  Vec2 size() const { return turn ? Vec2(from.height, from.width) : Vec2(from.width, from.height); }
+};
+
+/// The piece's smallest box, long side across the page when it fits that way;
+/// when its smallest box fits neither way (its tabs made it wider), any
+/// direction that fits: a hull edge's, or one of 360 half-degree steps.
+Placement fitting(const std::vector<Vec2>& points, const Box2& content) {
+  auto fits = [&](const Placement& p) { return p.size().x() <= content.width + 1e-9 && p.size().y() <= content.height + 1e-9; };
+  auto try_box = [&](const Box2& box, Placement& out) {
+    for (bool turn : {box.height > box.width, box.height <= box.width}) {
+      out = Placement{box, turn, Vec2::Zero()};
+      if (fits(out)) return true;
+    }
+    return false;
+  };
+  Placement out;
+  const Box2 smallest = minimum_box(points);
+  if (try_box(smallest, out)) return out;
+  const Polygon2 hull = convex_hull(points);
+  for (int k = 0; k < 360; ++k) {
+    const double angle = k * M_PI / 360.0;
+    const Vec2 axis(std::cos(angle), std::sin(angle)), up(-axis.y(), axis.x());
+    double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+    for (const Vec2& p : hull) {
+      s0 = std::min(s0, p.dot(axis)), s1 = std::max(s1, p.dot(axis));
+      t0 = std::min(t0, p.dot(up)), t1 = std::max(t1, p.dot(up));
+    }
+    if (try_box(Box2{s0 * axis + t0 * up, axis, s1 - s0, t1 - t0}, out)) return out;
+  }
+  throw Error(ExitCode::internal, "a piece of " + six(smallest.width) + " x " + six(smallest.height) +
+                                      " mm fits the page in no direction");
+}
+
+void place(Piece& piece, const Placement& at) {
+  for (PiecePanel& p : piece.panels) {
+    for (Vec2& c : p.outline) c = at.map(c);
+  }
+  for (PieceFold& f : piece.folds) f.a = at.map(f.a), f.b = at.map(f.b);
+  for (SeamSide& s : piece.seams) {
+    if (s.tab) {
+      for (Vec2& c : *s.tab) c = at.map(c);
+    }
+  }
+  for (SheetText& label : piece.labels) {
+    label.box.origin = at.map(label.box.origin);
+    label.box.axis = at.map_direction(label.box.axis);
+    label.box = sheets::upright(label.box);
+  }
+}
+
+/// 1, 2 or 5 times a power of ten, at most x.
+double round_down_125(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * p <= x) return m * p;
+  }
+  return p;
+}
+
+void text(SheetPage& page, const std::string& s, Vec2 at, double h, TextRole role = TextRole::legend) {
+  page.texts.push_back(SheetText{s, Box2{at, Vec2::UnitX(), text_width(s, h), h}, role});
+}
+
+/// Title, legend, scale bar and footer of page k of n.
+void decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat) {
+  const double m = 10.0, top = s.page.y() - m, right = s.page.x() - m;
+  text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
+                 to_string(s.mode) + ")",
+       Vec2(m, top - 4.0), 4.0, TextRole::title);
+  // Legend: items flow along rows under the title.
+  const double h = 2.2;
+  double x = m, row = top - 11.0;
+  auto room = [&](double width) {
+    if (x > m && x + width > right) x = m, row -= 6.0;
+  };
+  auto swatch_line = [&](LineStyle style, const std::string& what) {
+    room(12.0 + text_width(what, h));
+    page.lines.push_back(SheetLine{Vec2(x, row + 0.8), Vec2(x + 10.0, row + 0.8), style});
+    text(page, what, Vec2(x + 12.0, row), h);
+    x += 12.0 + text_width(what, h) + 6.0;
+  };
+  auto swatch_fill = [&](FillStyle style, const std::string& what) {
+    room(12.0 + text_width(what, h));
+    page.fills.push_back(SheetFill{{Vec2(x, row - 0.5), Vec2(x + 10.0, row - 0.5), Vec2(x + 8.0, row + 2.7),
+                                    Vec2(x + 2.0, row + 2.7)},
+                                   style, std::nullopt});
+    text(page, what, Vec2(x + 12.0, row), h);
+    x += 12.0 + text_width(what, h) + 6.0;
+  };
+  auto sample = [&](const std::string& label, TextRole role, const std::string& what) {
+    room(text_width(label, h) + 2.0 + text_width(what, h));
+    text(page, label, Vec2(x, row), h, role);
+    x += text_width(label, h) + 2.0;
+    text(page, what, Vec2(x, row), h);
+    x += text_width(what, h) + 6.0;
+  };
+  swatch_line(LineStyle::cut, "cut");
+  swatch_line(LineStyle::mountain, "mountain fold");
+  swatch_line(LineStyle::valley, "valley fold");
+  if (any_flat) swatch_line(LineStyle::flat, "hinge flat at t* (crease it)");
+  swatch_line(LineStyle::tab_fold, "fold the tab under");
+  swatch_fill(FillStyle::swatch_tab, "glue tab");
+  sample("S1", TextRole::seam, "glue to the other S1");
+  sample("P7", TextRole::panel, s.mode == PieceMode::cells ? "panel 7 (a wall: glue its two copies face to face)"
+                                                            : "panel 7 of the exports");
+  if (any_uncuttable) swatch_fill(FillStyle::swatch_not_cuttable, "not one plate (see phedra check)");
+  // Footer: scale bar and printing note.
+  const double bar = round_down_125(std::min(50.0, 0.3 * (right - m)));
+  const double y = m;
+  page.lines.push_back(SheetLine{Vec2(m, y + 1.0), Vec2(m + bar, y + 1.0), LineStyle::cut});
+  page.lines.push_back(SheetLine{Vec2(m, y), Vec2(m, y + 2.0), LineStyle::cut});
+  page.lines.push_back(SheetLine{Vec2(m + bar, y), Vec2(m + bar, y + 2.0), LineStyle::cut});
+  const std::string scale_text = six(bar) + " mm = " + six(bar / s.scale) + " model units";
+  text(page, scale_text, Vec2(m + bar + 3.0, y), h, TextRole::note);
+  const std::string note = "print at 100 % (actual size)";
+  text(page, note, Vec2(right - text_width(note, h), y), h, TextRole::note);
+}
+
+}  // namespace
+
+PieceMode piece_mode_from_string(const std::string& name) {
+  for (PieceMode mode : {PieceMode::strips, PieceMode::columns, PieceMode::cells, PieceMode::panels}) {
+    if (to_string(mode) == name) return mode;
+  }
+  throw InvalidInputError("--pieces", "unknown piece mode \"" + name + "\" (use strips, columns, cells or panels)");
+}
+
+std::string to_string(PieceMode mode) {
+  switch (mode) {
+    case PieceMode::strips: return "strips";
+    case PieceMode::columns: return "columns";
+    case PieceMode::cells: return "cells";
+    case PieceMode::panels: return "panels";
+  }
+  return "?";
+}
+
+Vec2 page_size_from_string(const std::string& name) {
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  if (lower == "a4") return {210.0, 297.0};
+  if (lower == "a3") return {297.0, 420.0};
+  if (lower == "letter") return {215.9, 279.4};
+  std::smatch match;
+  static const std::regex custom(R"(^\s*([0-9]+(?:\.[0-9]*)?)\s*x\s*([0-9]+(?:\.[0-9]*)?)\s*$)");
+  if (std::regex_match(lower, match, custom)) {
+    const Vec2 size(std::stod(match[1]), std::stod(match[2]));
+    if (size.minCoeff() < 100.0 || size.maxCoeff() > 5000.0) {
+      throw InvalidInputError("--page", "\"" + name + "\": each side must lie in [100, 5000] mm");
+    }
+    return size;
+  }
+  throw InvalidInputError("--page", "unknown page size \"" + name + "\" (use a4, letter, a3 or WxH in mm, e.g. 300x200)");
+}
+
+std::vector<SheetLine> Piece::lines() const {
+  std::vector<SheetLine> out;
+  std::vector<std::vector<bool>> fold(panels.size());
+  for (std::size_t i = 0; i < panels.size(); ++i) fold[i].assign(panels[i].outline.size(), false);
+  for (const PieceFold& f : folds) {
+    out.push_back(SheetLine{f.a, f.b, f.style});
+    for (std::size_t i : {f.first, f.second}) {
+      const Polygon2& o = panels[i].outline;
+      for (std::size_t k = 0; k < o.size(); ++k) {
+        const Vec2 &p = o[k], &q = o[(k + 1) % o.size()];
+        if (((p - f.a).norm() < 1e-6 && (q - f.b).norm() < 1e-6) || ((p - f.b).norm() < 1e-6 && (q - f.a).norm() < 1e-6)) {
+          fold[i][k] = true;
+        }
+      }
+    }
+  }
+  for (const SeamSide& s : seams) {
+    if (!s.tab) continue;
+    fold[s.panel][s.edge] = true;
+    const Polygon2& t = *s.tab;  // a, b, then the tab's outer corners
+    out.push_back(SheetLine{t[0], t[1], LineStyle::tab_fold});
+    for (std::size_t k = 1; k < t.size(); ++k) out.push_back(SheetLine{t[k], t[(k + 1) % t.size()], LineStyle::cut});
+  }
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    const Polygon2& o = panels[i].outline;
+    for (std::size_t k = 0; k < o.size(); ++k) {
+      if (!fold[i][k]) out.push_back(SheetLine{o[k], o[(k + 1) % o.size()], LineStyle::cut});
+    }
+  }
+  return out;
+}
+
+std::vector<SheetFill> Piece::fills() const {
+  std::vector<SheetFill> out;
+  for (const SeamSide& s : seams) {
+    if (s.tab) out.push_back(SheetFill{*s.tab, FillStyle::tab, std::nullopt});
+  }
+  if (!cuttable) {
+    for (const PiecePanel& p : panels) out.push_back(SheetFill{p.outline, FillStyle::not_cuttable, p.panel});
+  }
+  return out;
+}
+
+std::vector<Vec2> Piece::points() const {
+  std::vector<Vec2> out;
+  for (const PiecePanel& p : panels) out.insert(out.end(), p.outline.begin(), p.outline.end());
+  for (const SeamSide& s : seams) {
+    if (s.tab) out.insert(out.end(), s.tab->begin(), s.tab->end());
+  }
+  return out;
+}
+
+CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
+  const Assembly& a = design.assembly;
+  if (options.scale && !(*options.scale > 0.0 && std::isfinite(*options.scale))) {
+    throw InvalidInputError("--scale", "must be a positive number of millimetres per model unit");
+  }
+  if (!(options.tab_depth > 0.0 && options.tab_depth < 0.5)) {
+    throw InvalidInputError("--tab-depth", "must lie in (0, 0.5) of the seam's length");
+  }
+  CutSheets s;
+  s.name = a.name();
+  s.mode = options.mode;
+  s.page = options.page;
+  s.scale = options.scale ? *options.scale : options.model_mm / a.model_size();
+  const double m = options.margin;
+  s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header_mm - footer_mm};
+  const double tab_room = options.tabs ? 2.0 * options.max_tab_mm : 0.0;
+  const Vec2 fit(s.content.width - tab_room, s.content.height - tab_room);
+  s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams);
+  // Shelves from the top of the content area down, pages as they fill.
+  const double left = s.content.origin.x(), right = left + s.content.width;
+  const double bottom = s.content.origin.y(), top = bottom + s.content.height;
+  double x = left, shelf_top = top, shelf = 0.0;
+  std::size_t page = 0;
+  for (Piece& piece : s.pieces) {
+    const Placement at0 = fitting(piece.points(), s.content);
+    Placement at = at0;
+    const Vec2 size = at.size();
+    if (x > left && x + size.x() > right) {
+      x = left;
+      shelf_top -= shelf + options.gap;
+      shelf = 0.0;
+    }
+    if (shelf_top - size.y() < bottom) {
+      ++page;
+      x = left;
+      shelf_top = top;
+      shelf = 0.0;
+    }
+    at.corner = Vec2(x, shelf_top - size.y());
+    place(piece, at);
+    s.piece_page.push_back(page);
+    x += size.x() + options.gap;
+    shelf = std::max(shelf, size.y());
+  }
+  s.pages.resize(s.pieces.empty() ? 1 : page + 1);
+  bool any_uncuttable = false, any_flat = false;
+  s.smallest_label = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < s.pieces.size(); ++p) {
+    const Piece& piece = s.pieces[p];
+    SheetPage& out = s.pages[s.piece_page[p]];
+    out.pieces.push_back(p);
+    for (const SheetLine& l : piece.lines()) out.lines.push_back(l);
+    for (const SheetFill& f : piece.fills()) out.fills.push_back(f);
+    for (const SheetText& t : piece.labels) {
+      out.texts.push_back(t);
+      s.smallest_label = std::min(s.smallest_label, t.box.height);
+    }
+    any_uncuttable = any_uncuttable || !piece.cuttable;
+    s.folds += piece.folds.size();
+    for (const PieceFold& f : piece.folds) any_flat = any_flat || f.style == LineStyle::flat;
+    for (const SeamSide& side : piece.seams) s.tabs += side.tab ? 1 : 0;
+  }
+  if (!std::isfinite(s.smallest_label)) s.smallest_label = 0.0;
+  s.untabbed_seams = options.tabs ? s.seams - s.tabs : 0;
+  for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat);
+  for (const SheetPage& pg : s.pages) {
+    for (const SheetLine& l : pg.lines) {
+      if (!l.a.allFinite() || !l.b.allFinite()) throw Error(ExitCode::internal, "a cut-sheet line is not finite");
+    }
+  }
+  return s;
+}
+
+}  // namespace phedra

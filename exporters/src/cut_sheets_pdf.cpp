@@ -1,0 +1,127 @@
+#include "phedra/cut_sheets_pdf.h"
+
+#include "phedra/errors.h"
+
+#include <cairo-pdf.h>
+#include <cairo.h>
+
+#include <cmath>
+#include <memory>
+
+namespace phedra {
+namespace {
+
+cairo_status_t append(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+
+void set_line(cairo_t* cr, LineStyle style) {
+  auto dash = [cr](std::initializer_list<double> d) {
+    const std::vector<double> v(d);
+    cairo_set_dash(cr, v.data(), static_cast<int>(v.size()), 0.0);
+  };
+  switch (style) {
+    case LineStyle::cut: cairo_set_source_rgb(cr, 0, 0, 0), cairo_set_line_width(cr, 0.25), dash({}); break;
+    case LineStyle::mountain: cairo_set_source_rgb(cr, 0.78, 0.16, 0.16), cairo_set_line_width(cr, 0.3), dash({3, 1, 0.6, 1}); break;
+    case LineStyle::valley: cairo_set_source_rgb(cr, 0.12, 0.36, 0.72), cairo_set_line_width(cr, 0.3), dash({2, 1}); break;
+    case LineStyle::flat: cairo_set_source_rgb(cr, 0.18, 0.49, 0.2), cairo_set_line_width(cr, 0.25), dash({1, 1}); break;
+    case LineStyle::tab_fold: cairo_set_source_rgb(cr, 0.47, 0.47, 0.47), cairo_set_line_width(cr, 0.25), dash({0.6, 0.8}); break;
+    case LineStyle::frame: cairo_set_source_rgb(cr, 0.8, 0.8, 0.8), cairo_set_line_width(cr, 0.2), dash({}); break;
+  }
+}
+
+/// Draws page k in mm (y up on the sheet, down in cairo).
+void draw(cairo_t* cr, const CutSheets& s, std::size_t k) {
+  const SheetPage& page = s.pages.at(k);
+  const double H = s.page.y();
+  cairo_set_source_rgb(cr, 1, 1, 1);
+  cairo_paint(cr);
+  for (const SheetFill& f : page.fills) {
+    const bool tab = f.style == FillStyle::tab || f.style == FillStyle::swatch_tab;
+    tab ? cairo_set_source_rgb(cr, 0.894, 0.894, 0.894) : cairo_set_source_rgb(cr, 0.957, 0.651, 0.651);
+    for (std::size_t i = 0; i < f.outline.size(); ++i) {
+      (i ? cairo_line_to : cairo_move_to)(cr, f.outline[i].x(), H - f.outline[i].y());
+    }
+    cairo_close_path(cr);
+    cairo_fill(cr);
+  }
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (const SheetLine& l : page.lines) {
+    set_line(cr, l.style);
+    cairo_move_to(cr, l.a.x(), H - l.a.y());
+    cairo_line_to(cr, l.b.x(), H - l.b.y());
+    cairo_stroke(cr);
+  }
+  for (const SheetText& t : page.texts) {
+    const bool bold = t.role == TextRole::title;
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, font_size_for_capitals(t.box.height));
+    cairo_text_extents_t extents;
+    cairo_text_extents(cr, t.text.c_str(), &extents);
+    if (t.role == TextRole::seam) {
+      cairo_set_source_rgb(cr, 0.043, 0.341, 0.659);
+    } else if (t.role == TextRole::panel) {
+      cairo_set_source_rgb(cr, 0.27, 0.27, 0.27);
+    } else {
+      cairo_set_source_rgb(cr, 0, 0, 0);
+    }
+    cairo_save(cr);
+    cairo_translate(cr, t.box.origin.x(), H - t.box.origin.y());
+    cairo_rotate(cr, -std::atan2(t.box.axis.y(), t.box.axis.x()));
+    // Stretch the text to exactly its box (the same box the SVG's textLength fills).
+    if (extents.x_advance > 0.0) cairo_scale(cr, t.box.width / extents.x_advance, 1.0);
+    cairo_move_to(cr, 0, 0);
+    cairo_show_text(cr, t.text.c_str());
+    cairo_restore(cr);
+  }
+}
+
+void check(cairo_status_t status, const char* what) {
+  if (status != CAIRO_STATUS_SUCCESS) {
+    throw Error(ExitCode::internal, std::string("cairo could not draw the ") + what + ": " + cairo_status_to_string(status));
+  }
+}
+
+}  // namespace
+
+std::string cut_sheets_pdf(const CutSheets& s) {
+  std::string out;
+  const double points = 72.0 / 25.4;
+  cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(append, &out, s.page.x() * points, s.page.y() * points);
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, (s.name + " - cut sheets").c_str());
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "phedra outlines");
+  cairo_t* cr = cairo_create(surface);
+  cairo_scale(cr, points, points);
+  for (std::size_t k = 0; k < s.pages.size(); ++k) {
+    draw(cr, s, k);
+    cairo_show_page(cr);
+  }
+  const cairo_status_t status = cairo_status(cr);
+  cairo_destroy(cr);
+  cairo_surface_finish(surface);
+  const cairo_status_t surface_status = cairo_surface_status(surface);
+  cairo_surface_destroy(surface);
+  check(status, "PDF");
+  check(surface_status, "PDF");
+  return out;
+}
+
+std::string sheet_page_png(const CutSheets& s, std::size_t k, double dpi) {
+  const double pixels = dpi / 25.4;
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(std::ceil(s.page.x() * pixels)),
+                                                        static_cast<int>(std::ceil(s.page.y() * pixels)));
+  cairo_t* cr = cairo_create(surface);
+  cairo_scale(cr, pixels, pixels);
+  draw(cr, s, k);
+  const cairo_status_t status = cairo_status(cr);
+  cairo_destroy(cr);
+  std::string out;
+  const cairo_status_t written = cairo_surface_write_to_png_stream(surface, append, &out);
+  cairo_surface_destroy(surface);
+  check(status, "PNG");
+  check(written, "PNG");
+  return out;
+}
+
+}  // namespace phedra

@@ -1,0 +1,150 @@
+// Labels that fit (issue 17, item 2): every label is a box inside its panel,
+// as large as fits up to a readable maximum, clear of the panel's other labels.
+
+#include "cut_sheet_parts.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+namespace phedra::sheets {
+namespace {
+
+constexpr double panel_label_mm = 3.5;  ///< capital height at most
+constexpr double seam_label_mm = 3.0;
+constexpr double smallest_mm = 0.1;
+
+bool clear_of(const Box2& box, const std::vector<Box2>& avoid, double gap) {
+  const Polygon2 corners = box.corners();
+  for (const Box2& other : avoid) {
+    if (convex_overlap(corners, other.corners()) > -gap) return false;
+  }
+  return true;
+}
+
+/// The area centroid and the direction of the longest edge.
+std::pair<Vec2, Vec2> centre_and_axis(const Polygon2& outline) {
+  Vec2 centre = Vec2::Zero();
+  double area = 0.0;
+  std::size_t longest = 0;
+  const std::size_t n = outline.size();
+  for (std::size_t k = 0; k < n; ++k) {
+    const Vec2 &p = outline[k], &q = outline[(k + 1) % n];
+    const double c = p.x() * q.y() - p.y() * q.x();
+    area += c;
+    centre += c * (p + q);
+    if ((q - p).squaredNorm() > (outline[(longest + 1) % n] - outline[longest]).squaredNorm()) longest = k;
+  }
+  centre = std::abs(area) > 1e-12 ? Vec2(centre / (3.0 * area)) : outline.front();
+  Vec2 axis = outline[(longest + 1) % n] - outline[longest];
+  axis = axis.squaredNorm() > 0.0 ? Vec2(axis.normalized()) : Vec2::UnitX();
+  return {centre, axis};
+}
+
+/// The label box of capital height h: centred on `centre` along `axis`, or along edge `edge`.
+Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double width_per_height, double h,
+               const Vec2& centre, const Vec2& centre_axis) {
+  const double w = width_per_height * h;
+  if (!edge) {
+    const Vec2 up(-centre_axis.y(), centre_axis.x());
+    return Box2{centre - 0.5 * w * centre_axis - 0.5 * h * up, centre_axis, w, h};
+  }
+  const Vec2 a = outline[*edge], b = outline[(*edge + 1) % outline.size()];
+  Vec2 axis = b - a;
+  axis = axis.squaredNorm() > 0.0 ? Vec2(axis.normalized()) : Vec2::UnitX();
+  const Vec2 inward(-axis.y(), axis.x());  // counter-clockwise outline: inside on the left
+  const Vec2 mid = 0.5 * (a + b);
+  return Box2{mid - 0.5 * w * axis + 0.3 * h * inward, axis, w, h};
+}
+
+}  // namespace
+
+double text_width(const std::string& text, double height) {
+  double w = 0.0;
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    w += std::isdigit(u) || std::isupper(u) ? 0.88 : std::islower(u) ? 0.78 : c == ' ' ? 0.45 : 0.6;
+  }
+  return w * height;
+}
+
+Box2 upright(const Box2& box) {
+  const bool upside_down = box.axis.x() < -1e-9 || (std::abs(box.axis.x()) <= 1e-9 && box.axis.y() < 0.0);
+  if (!upside_down) return box;
+  return Box2{box.origin + box.width * box.axis + box.height * box.up(), -box.axis, box.width, box.height};
+}
+
+std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t> edge, const std::string& text,
+                              double max_height, const std::vector<Box2>& avoid) {
+  const double ratio = text_width(text, 1.0);
+  const auto [centroid, axis] = centre_and_axis(outline);
+  // The largest height that fits at one centre (bisection), 0 when nothing does.
+  auto largest = [&](const Vec2& centre) {
+    auto ok = [&](double h) {
+      const Box2 box = label_box(outline, edge, ratio, h, centre, axis);
+      return box_inside(outline, box, 0.15 * h) && clear_of(box, avoid, 0.15 * h);
+    };
+    if (ok(max_height)) return max_height;
+    double lo = 0.0, hi = max_height;
+    for (int i = 0; i < 30; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (ok(mid) ? lo : hi) = mid;
+    }
+    return lo >= smallest_mm && ok(lo) ? lo : 0.0;
+  };
+  Vec2 best_centre = centroid;
+  double best = largest(centroid);
+  if (!edge && best < max_height) {
+    // A panel label squeezed at the centroid (by seam labels, or a slim panel): try a grid of centres.
+    const Vec2 up(-axis.y(), axis.x());
+    double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+    for (const Vec2& p : outline) {
+      s0 = std::min(s0, (p - centroid).dot(axis)), s1 = std::max(s1, (p - centroid).dot(axis));
+      t0 = std::min(t0, (p - centroid).dot(up)), t1 = std::max(t1, (p - centroid).dot(up));
+    }
+    for (int i = 1; i < 8; ++i) {
+      for (int j = 1; j < 8; ++j) {
+        const Vec2 c = centroid + (s0 + (s1 - s0) * i / 8.0) * axis + (t0 + (t1 - t0) * j / 8.0) * up;
+        if (!inside(outline, c)) continue;
+        const double h = largest(c);
+        if (h > 1.05 * best) best = h, best_centre = c;
+      }
+    }
+  }
+  if (best <= 0.0) return std::nullopt;
+  return label_box(outline, edge, ratio, best, best_centre, axis);
+}
+
+void place_labels(Piece& piece) {
+  for (std::size_t i = 0; i < piece.panels.size(); ++i) {
+    const PiecePanel& panel = piece.panels[i];
+    std::vector<Box2> taken;
+    for (const SeamSide& side : piece.seams) {
+      if (side.panel != i) continue;
+      const std::string text = "S" + std::to_string(side.seam);
+      std::optional<Box2> on_tab;
+      if (side.tab) {
+        // On the tab: its own room, along the seam (the tab's corners are a, b, then outside).
+        const Polygon2& t = *side.tab;
+        on_tab = fit_label(Polygon2{t[1], t[0], t[3], t[2]}, 0, text, seam_label_mm, {});
+      }
+      auto on_panel = fit_label(panel.outline, side.edge, text, seam_label_mm, taken);
+      if (on_tab && (!on_panel || on_tab->height >= 0.8 * on_panel->height)) {
+        piece.labels.push_back(SheetText{text, *on_tab, TextRole::seam});
+        continue;
+      }
+      if (auto box = on_panel) {
+        taken.push_back(*box);
+        piece.labels.push_back(SheetText{text, *box, TextRole::seam});
+      }
+    }
+    const std::string text = "P" + std::to_string(panel.panel);
+    // A panel that is not a simple polygon (red, not to be cut) is named inside its convex hull.
+    const Polygon2 region = piece.cuttable ? panel.outline : convex_hull(panel.outline);
+    if (auto box = fit_label(region, std::nullopt, text, panel_label_mm, taken)) {
+      piece.labels.push_back(SheetText{text, *box, TextRole::panel});
+    }
+  }
+}
+
+}  // namespace phedra::sheets

@@ -1,0 +1,360 @@
+// Cut sheets (issue 17): pieces unfolded true to size, every panel once, fold
+// lines on the hinges with the right mountain/valley, every seam labelled on
+// every side with one tab, labels inside their panel or tab and apart, nothing
+// overlapping or off the page; PDF, SVG, PNG and DXF; one test per message.
+
+#include "phedra/assembly_mesh.h"
+#include "phedra/cut_sheets.h"
+#include "phedra/cut_sheets_pdf.h"
+#include "phedra/fold_export.h"
+#include "support/cli_run.h"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <unistd.h>
+
+using namespace phedra;
+using phedra::test::phedra_cli;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string presets = PHEDRA_PRESETS_DIR;
+
+std::vector<std::string> shipped_presets() {
+  std::vector<std::string> out;
+  for (const auto& entry : fs::directory_iterator(presets)) {
+    if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") {
+      out.push_back(entry.path().string());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::pair<Vec2, Vec2> bounds(const Polygon2& p) {
+  Vec2 lo = p.front(), hi = p.front();
+  for (const Vec2& c : p) lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+  return {lo, hi};
+}
+
+bool boxes_apart(const std::pair<Vec2, Vec2>& a, const std::pair<Vec2, Vec2>& b) {
+  return (a.second.array() < b.first.array()).any() || (b.second.array() < a.first.array()).any();
+}
+
+bool inside_box(const Box2& area, const Vec2& p) {
+  const Vec2 d = p - area.origin;
+  return d.x() >= -1e-9 && d.y() >= -1e-9 && d.x() <= area.width + 1e-9 && d.y() <= area.height + 1e-9;
+}
+
+/// Every geometric promise of the sheets of one design in one mode.
+void check_sheets(const Design& design, const CutSheets& s) {
+  const Assembly& a = design.assembly;
+  const bool cells = s.mode == PieceMode::cells;
+  const AssemblyMesh mesh = cells ? separate_mesh(a) : panel_mesh(design);
+  const Points x = mesh.positions(a.evaluate(a.t_star()));
+  const double tolerance = 1e-9 * a.model_size() * s.scale;
+  // Every panel once (cells: every member's copy of it once, every exported panel at least once).
+  std::map<std::size_t, std::size_t> seen;
+  std::size_t total = 0;
+  for (const Piece& piece : s.pieces) {
+    for (const PiecePanel& p : piece.panels) ++seen[p.panel], ++total;
+  }
+  CHECK(total == mesh.faces.size());
+  CHECK(seen.size() == panel_mesh(design).faces.size());
+  if (!cells) {
+    for (const auto& [panel, count] : seen) CHECK(count == 1);
+  }
+  // True to size: every edge and diagonal against the 3D panel at t*, times the scale.
+  for (const Piece& piece : s.pieces) {
+    for (const PiecePanel& p : piece.panels) {
+      REQUIRE(p.outline.size() == p.vertices.size());
+      const std::size_t n = p.outline.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i + 1; j < n; ++j) {
+          CHECK((p.outline[i] - p.outline[j]).norm() ==
+                Approx(s.scale * (x[p.vertices[i]] - x[p.vertices[j]]).norm()).margin(tolerance));
+        }
+      }
+      if (piece.cuttable && n >= 3) CHECK(signed_area2(p.outline) > 0.0);  // seen from its front
+    }
+  }
+  // Every panel carries its number inside it (a red one inside its convex hull).
+  std::size_t unnamed = 0;
+  for (const Piece& piece : s.pieces) {
+    for (const PiecePanel& p : piece.panels) {
+      const Polygon2 region = piece.cuttable ? p.outline : convex_hull(p.outline);
+      bool named = false;
+      for (const SheetText& t : piece.labels) named = named || (t.text == "P" + std::to_string(p.panel) && box_inside(region, t.box));
+      unnamed += named ? 0 : 1;
+    }
+  }
+  CHECK(unnamed == 0);
+  // Fold lines: on an edge of both panels, the same two mesh vertices, mountain/valley from the 3D fold angle.
+  for (const Piece& piece : s.pieces) {
+    for (const PieceFold& f : piece.folds) {
+      std::set<std::size_t> ends[2];
+      for (int side = 0; side < 2; ++side) {
+        const PiecePanel& p = piece.panels[side ? f.second : f.first];
+        for (std::size_t k = 0; k < p.outline.size(); ++k) {
+          if ((p.outline[k] - f.a).norm() < 1e-6 || (p.outline[k] - f.b).norm() < 1e-6) ends[side].insert(p.vertices[k]);
+        }
+      }
+      CHECK(ends[0].size() == 2);
+      CHECK(ends[0] == ends[1]);
+      CHECK((f.b - f.a).norm() > 0.0);
+      CHECK(f.style == (std::abs(f.angle_degrees) < 1e-6 ? LineStyle::flat
+                        : f.angle_degrees > 0         ? LineStyle::valley
+                                                      : LineStyle::mountain));
+    }
+  }
+  // Seams: two or more sides on one mesh edge, equal lengths, at most one tab, a label on every side.
+  std::map<std::size_t, std::vector<std::pair<const Piece*, const SeamSide*>>> seams;
+  for (const Piece& piece : s.pieces) {
+    for (const SeamSide& side : piece.seams) seams[side.seam].push_back({&piece, &side});
+  }
+  CHECK(seams.size() == s.seams);
+  std::size_t tabs = 0;
+  for (const auto& [id, sides] : seams) {
+    CAPTURE(id);
+    CHECK(sides.size() >= 2);
+    std::size_t with_tab = 0;
+    std::set<std::size_t> edge;
+    std::vector<double> lengths;
+    for (const auto& [piece, side] : sides) {
+      const PiecePanel& p = piece->panels[side->panel];
+      const std::size_t n = p.outline.size();
+      std::set<std::size_t> here{p.vertices[side->edge], p.vertices[(side->edge + 1) % n]};
+      if (edge.empty()) edge = here;
+      CHECK(here == edge);
+      lengths.push_back((p.outline[(side->edge + 1) % n] - p.outline[side->edge]).norm());
+      with_tab += side->tab ? 1 : 0;
+      CHECK(!(side->tab && side->on_fold));
+      // Its label: S<id>, inside this panel or this side's tab.
+      bool labelled = false;
+      for (const SheetText& t : piece->labels) {
+        if (t.text != "S" + std::to_string(id)) continue;
+        labelled = labelled || box_inside(p.outline, t.box) || (side->tab && box_inside(*side->tab, t.box));
+      }
+      // (A panel that cannot be cut, filled red, carries its number but maybe not its seams' labels.)
+      CHECK((labelled || !piece->cuttable));
+    }
+    for (double l : lengths) CHECK(l == Approx(lengths.front()).margin(tolerance));
+    CHECK(with_tab <= 1);
+    tabs += with_tab;
+  }
+  CHECK(tabs == s.tabs);
+  // Per page: nothing overlaps (panels, tabs, labels), everything inside the page's content area.
+  for (std::size_t k = 0; k < s.pages.size(); ++k) {
+    CAPTURE(k);
+    std::vector<Polygon2> shapes;  // cuttable panels and tabs
+    std::vector<Box2> labels;
+    for (std::size_t pi : s.pages[k].pieces) {
+      const Piece& piece = s.pieces[pi];
+      for (const PiecePanel& p : piece.panels) {
+        shapes.push_back(piece.cuttable ? p.outline : convex_hull(p.outline));
+        for (const Vec2& c : p.outline) CHECK(inside_box(s.content, c));
+      }
+      for (const SeamSide& side : piece.seams) {
+        if (side.tab) shapes.push_back(*side.tab);
+      }
+      for (const SheetText& t : piece.labels) {
+        labels.push_back(t.box);
+        for (const Vec2& c : t.box.corners()) CHECK(inside_box(s.content, c));
+      }
+    }
+    std::size_t overlaps = 0, label_overlaps = 0;
+    std::vector<std::pair<Vec2, Vec2>> b;
+    for (const Polygon2& p : shapes) b.push_back(bounds(p));
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      for (std::size_t j = i + 1; j < shapes.size(); ++j) {
+        if (!boxes_apart(b[i], b[j]) && polygon_overlap(shapes[i], shapes[j]) > 1e-6) ++overlaps;
+      }
+    }
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+      for (std::size_t j = i + 1; j < labels.size(); ++j) {
+        if (convex_overlap(labels[i].corners(), labels[j].corners()) > 0.0) ++label_overlaps;
+      }
+    }
+    CHECK(overlaps == 0);
+    CHECK(label_overlaps == 0);
+    // Header and footer texts stay on the page.
+    for (const SheetText& t : s.pages[k].texts) {
+      for (const Vec2& c : t.box.corners()) CHECK(inside_box(Box2{Vec2::Zero(), Vec2::UnitX(), s.page.x(), s.page.y()}, c));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("cut sheets of every shipped preset keep every promise, in every piece mode", "[outlines]") {
+  for (const std::string& path : shipped_presets()) {
+    const Design design = load_design(path);
+    for (PieceMode mode : {PieceMode::strips, PieceMode::columns, PieceMode::cells, PieceMode::panels}) {
+      if (mode == PieceMode::cells && design.merge) continue;  // refused: see below
+      CAPTURE(path, to_string(mode));
+      CutSheetOptions options;
+      options.mode = mode;
+      const CutSheets s = cut_sheets(design, options);
+      check_sheets(design, s);
+      // Connected pieces: strips and columns join panels (fewer pieces than panels).
+      if (mode == PieceMode::panels) {
+        CHECK(s.pieces.size() == panel_mesh(design).faces.size());
+        CHECK(s.folds == 0);
+      } else {
+        CHECK(s.folds > 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs optional", "[outlines]") {
+  const Design tube = load_design(presets + "/parallelogram-tube.json");
+  CutSheetOptions options;
+  const CutSheets s = cut_sheets(tube, options);
+  // A tube's strip is its ring of panels: one piece a row, cut open at one seam.
+  const std::size_t rows = tube.assembly.topology(0).rows() - 1, columns = tube.assembly.topology(0).face_columns();
+  CHECK(s.pieces.size() == rows);
+  for (const Piece& piece : s.pieces) {
+    CHECK(piece.panels.size() == columns);
+    CHECK(piece.folds.size() == columns - 1);
+    for (const PiecePanel& p : piece.panels) CHECK(p.row == piece.panels.front().row);
+  }
+  CHECK(s.scale == Approx(200.0 / tube.assembly.model_size()));
+  CHECK(s.page == Vec2(210.0, 297.0));
+  options.scale = 30.0;
+  options.page = page_size_from_string("letter");
+  options.tabs = false;
+  const CutSheets letter = cut_sheets(tube, options);
+  CHECK(letter.scale == 30.0);
+  CHECK(letter.page == Vec2(215.9, 279.4));
+  CHECK(letter.tabs == 0);
+  check_sheets(tube, letter);
+  CHECK(page_size_from_string("A3") == Vec2(297.0, 420.0));
+  CHECK(page_size_from_string("300x200") == Vec2(300.0, 200.0));
+  // A larger model needs more pages; every page carries its number.
+  options.scale = 60.0;
+  const CutSheets big = cut_sheets(tube, options);
+  CHECK(big.pages.size() > letter.pages.size());
+  const std::string last = sheet_page_svg(big, big.pages.size() - 1);
+  CHECK_THAT(last, Contains("cut sheet " + std::to_string(big.pages.size()) + " of " + std::to_string(big.pages.size())));
+  CHECK_THAT(last, Contains("mountain fold"));
+  CHECK_THAT(last, Contains("mm = "));  // the scale bar
+  // An array in strips: rows cross the members through their walls.
+  const Design grid = load_design(presets + "/grid-3x3.json");
+  const CutSheets g = cut_sheets(grid, {});
+  std::size_t crossing = 0;
+  for (const Piece& piece : g.pieces) {
+    std::set<std::size_t> members;
+    for (const PiecePanel& p : piece.panels) members.insert(p.member);
+    crossing += members.size() > 1 ? 1 : 0;
+  }
+  CHECK(crossing > 0);
+  CHECK(g.pieces.size() < panel_mesh(grid).faces.size() / 3);
+}
+
+TEST_CASE("cut sheets render as PDF pages, SVG and PNG files and DXF", "[outlines][cli]") {
+  const fs::path dir = fs::temp_directory_path() / ("phedra-sheets-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string helix = presets + "/helix-tube.json";
+  const auto r = phedra_cli({"outlines", helix, "-o", (dir / "h.pdf").string()});
+  REQUIRE(r.code == 0);
+  const CutSheets s = cut_sheets(load_design(helix), {});
+  REQUIRE(s.pages.size() > 1);
+  std::ifstream in(dir / "h.pdf", std::ios::binary);
+  const std::string pdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(pdf.rfind("%PDF-", 0) == 0);
+  std::size_t pages = 0;
+  for (std::size_t at = pdf.find("/Type /Page"); at != std::string::npos; at = pdf.find("/Type /Page", at + 1)) {
+    pages += pdf.compare(at, 12, "/Type /Pages") == 0 ? 0 : 1;
+  }
+  CHECK(pages == s.pages.size());
+  CHECK_THAT(r.out, Contains("wrote " + (dir / "h.pdf").string() + ": " + std::to_string(s.pages.size()) +
+                             " pages of 210 x 297 mm, " + std::to_string(s.pieces.size()) + " pieces (strips)"));
+  // SVG and PNG: one file per page, numbered.
+  REQUIRE(phedra_cli({"outlines", helix, "-o", (dir / "h.svg").string()}).code == 0);
+  REQUIRE(phedra_cli({"outlines", helix, "-o", (dir / "h.png").string()}).code == 0);
+  for (std::size_t k = 1; k <= s.pages.size(); ++k) {
+    CHECK(fs::file_size(dir / ("h-" + std::to_string(k) + ".svg")) > 1000);
+    std::ifstream png(dir / ("h-" + std::to_string(k) + ".png"), std::ios::binary);
+    std::string magic(8, '\0');
+    png.read(magic.data(), 8);
+    CHECK(magic == "\x89PNG\r\n\x1a\n");
+  }
+  CHECK(!fs::exists(dir / "h.svg"));
+  CHECK(!fs::exists(dir / ("h-" + std::to_string(s.pages.size() + 1) + ".svg")));
+  // One page: the name as given.
+  REQUIRE(phedra_cli({"outlines", presets + "/parallelogram-tube.json", "-o", (dir / "t.svg").string()}).code == 0);
+  CHECK(fs::exists(dir / "t.svg"));
+  // DXF: code/value pairs, no NaN, the layers.
+  REQUIRE(phedra_cli({"outlines", helix, "-o", (dir / "h.dxf").string(), "--pieces", "columns"}).code == 0);
+  std::ifstream dxf_in(dir / "h.dxf");
+  const std::string dxf((std::istreambuf_iterator<char>(dxf_in)), std::istreambuf_iterator<char>());
+  CHECK(std::count(dxf.begin(), dxf.end(), '\n') % 2 == 0);
+  CHECK(dxf.find("nan") == std::string::npos);
+  for (const char* layer : {"\nCUT\n", "\nMOUNTAIN\n", "\nTAB_FOLD\n", "\nLABELS\n"}) CHECK_THAT(dxf, Contains(layer));
+  CHECK_THAT(dxf, Contains("0\nEOF\n"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("phedra outlines: one clear error per bad option, nothing written", "[outlines][cli]") {
+  const fs::path dir = fs::temp_directory_path() / ("phedra-sheets-errors-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string tube = presets + "/parallelogram-tube.json";
+  const std::string out = (dir / "u.pdf").string();
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases{
+      {{"outlines", tube, "-o", (dir / "u.eps").string()}, "output: unknown format \".eps\" (use .pdf, .svg, .png or .dxf)"},
+      {{"outlines", tube, "-o", out, "--pieces", "rings"}, "--pieces: unknown piece mode \"rings\" (use strips, columns, cells or panels)"},
+      {{"outlines", tube, "-o", out, "--page", "a5"}, "--page: unknown page size \"a5\" (use a4, letter, a3 or WxH in mm"},
+      {{"outlines", tube, "-o", out, "--page", "50x50"}, "--page: \"50x50\": each side must lie in [100, 5000] mm"},
+      {{"outlines", tube, "-o", out, "--scale", "0"}, "--scale: must be a positive number of millimetres per model unit"},
+      {{"outlines", tube, "-o", out, "--model-size", "-3"}, "--model-size: must be a positive number of mm"},
+      {{"outlines", tube, "-o", out, "--tab-depth", "0.7"}, "--tab-depth: must lie in (0, 0.5) of the seam's length"},
+      {{"outlines", tube, "-o", out, "--scale", "400"}, "mm per model unit, larger than the page's room for pieces"},
+      {{"outlines", presets + "/merged-tube.json", "-o", out, "--pieces", "cells"},
+       "--pieces: cells: this design merges its cells into one tube (\"merge\": true)"},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.args);
+    const auto r = phedra_cli(c.args);
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Contains(c.message));
+  }
+  // The scale message names the panel and a scale that fits, and that scale works.
+  const auto r = phedra_cli({"outlines", tube, "-o", out, "--scale", "400"});
+  CHECK_THAT(r.err, Contains("panel P"));
+  const std::string hint = r.err.substr(r.err.find("use --scale ") + 12);
+  const std::string fitting = hint.substr(0, hint.find(' '));
+  CHECK(phedra_cli({"outlines", tube, "-o", (dir / "fits.pdf").string(), "--scale", fitting}).code == 0);
+  CHECK(!fs::exists(out));
+  CHECK(!fs::exists(dir / "u.eps"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("cut-sheet geometry: overlaps, boxes inside polygons, smallest boxes", "[outlines]") {
+  const Polygon2 square{{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  const Polygon2 shifted{{1, 1}, {3, 1}, {3, 3}, {1, 3}};
+  const Polygon2 touching{{2, 0}, {4, 0}, {4, 2}, {2, 2}};
+  CHECK(convex_overlap(square, shifted) == Approx(1.0));
+  CHECK(convex_overlap(square, touching) == Approx(0.0).margin(1e-12));
+  CHECK(convex_overlap(square, Polygon2{{5, 5}, {6, 5}, {6, 6}}) < 0.0);
+  // A dart (non-convex quad) splits through its reflex corner: a point in the notch is outside both parts.
+  const Polygon2 dart{{0, 0}, {4, 0}, {1, 1}, {0, 4}};
+  CHECK(convex_parts(dart).size() == 2);
+  CHECK(polygon_overlap(dart, Polygon2{{2, 2}, {3, 2}, {3, 3}, {2, 3}}) < 0.0);
+  CHECK(inside(square, Vec2(1, 1), 0.5));
+  CHECK(!inside(square, Vec2(1, 1.8), 0.5));
+  CHECK(box_inside(square, Box2{Vec2(0.5, 0.5), Vec2::UnitX(), 1.0, 1.0}));
+  CHECK(!box_inside(square, Box2{Vec2(1.5, 0.5), Vec2::UnitX(), 1.0, 1.0}));
+  const Box2 box = minimum_box({{0, 0}, {3, 3}, {2.5, 3.5}, {-0.5, 0.5}});
+  CHECK(box.width * box.height == Approx(3.0 * std::sqrt(2.0) * std::sqrt(0.5)).epsilon(1e-9));
+}
