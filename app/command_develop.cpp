@@ -24,6 +24,8 @@ struct DevelopOptions {
   double fraction = 0.5;
   std::vector<std::string> outputs;
   bool json = false;
+  double scale = 0.0;
+  bool scale_given = false;
 };
 
 std::vector<int> fold_choices(const std::string& text, std::size_t strips) {
@@ -114,15 +116,21 @@ void add_develop_command(CLI::App& app, Context& context) {
       ->check(CLI::Range(1e-9, 1.0 - 1e-9))
       ->capture_default_str();
   sub->add_option("-o,--output", o->outputs,
-                  "Write .svg (crease pattern), .fold (crease pattern, FOLD with M/V) or .json (the folded preset); "
-                  "repeatable")
+                  "Write .svg or .pdf (the crease pattern to scale, with title, legend and scale bar), .fold (crease "
+                  "pattern, FOLD with M/V) or .json (the folded preset); repeatable")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  CLI::Option* scale = sub->add_option("--scale", o->scale, "Crease pattern drawings: millimetres per model unit "
+                                                            "(default: the pattern fills about 170 x 220 mm)");
   sub->add_flag("--json", o->json, "Print JSON instead of text");
-  sub->callback([o, &context] {
+  sub->callback([o, scale, &context] {
+    const std::optional<double> drawing_scale = scale->count() ? std::optional<double>(o->scale) : std::nullopt;
+    if (drawing_scale && !(*drawing_scale > 0.0)) {
+      throw InvalidInputError("--scale", "must be a positive number of millimetres per model unit");
+    }
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
-      if (ext != ".svg" && ext != ".fold" && ext != ".json") {
-        throw InvalidInputError("output", "unknown format \"" + ext + "\" for " + path + " (use .svg, .fold or .json)");
+      if (ext != ".svg" && ext != ".pdf" && ext != ".fold" && ext != ".json") {
+        throw InvalidInputError("output", "unknown format \"" + ext + "\" for " + path + " (use .svg, .pdf, .fold or .json)");
       }
     }
     context.preset = o->pattern;
@@ -180,7 +188,8 @@ void add_develop_command(CLI::App& app, Context& context) {
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
       std::string text;
-      if (ext == ".svg") text = crease_svg(creases);
+      if (ext == ".svg") text = crease_svg(creases, drawing_scale);
+      if (ext == ".pdf") text = crease_pdf(creases, drawing_scale);
       if (ext == ".fold") text = crease_fold(creases).dump(1) + "\n";
       if (ext == ".json") text = preset_to_json(pattern.folded_preset(t, fold)).dump(2) + "\n";
       emit(text, path, o->pattern, context.out);

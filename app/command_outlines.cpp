@@ -3,7 +3,6 @@
 #include "buildability_warning.h"
 #include "commands.h"
 #include "phedra/cut_sheets.h"
-#include "phedra/cut_sheets_pdf.h"
 #include "phedra/errors.h"
 #include "support.h"
 
@@ -85,7 +84,7 @@ void add_outlines_command(CLI::App& app, Context& context) {
     } else {
       for (std::size_t k = 0; k < sheets.pages.size(); ++k) {
         files.push_back({numbered(o->output, k, sheets.pages.size()),
-                         ext == ".svg" ? sheet_page_svg(sheets, k) : sheet_page_png(sheets, k)});
+                         ext == ".svg" ? sheet_page_svg(sheets, k) : page_png(sheets.pages[k], sheets.page)});
       }
     }
     for (const auto& [path, content] : files) emit(content, path, o->preset, context.out);

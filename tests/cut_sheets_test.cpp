@@ -5,7 +5,6 @@
 
 #include "phedra/assembly_mesh.h"
 #include "phedra/cut_sheets.h"
-#include "phedra/cut_sheets_pdf.h"
 #include "phedra/fold_export.h"
 #include "support/cli_run.h"
 

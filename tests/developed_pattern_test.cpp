@@ -138,9 +138,29 @@ TEST_CASE("crease assignments: mirrored choices swap every mountain and valley, 
   CHECK(fold["edges_assignment"].size() == a.edges.size());
   CHECK(fold["vertices_coords"].size() == (p.strips() + 1) * p.columns());
   const std::string svg = crease_svg(a);
-  CHECK_THAT(svg, Contains("class=\"M\""));
-  CHECK_THAT(svg, Contains("class=\"V\""));
+  CHECK_THAT(svg, Contains("class=\"mountain\""));
+  CHECK_THAT(svg, Contains("class=\"valley\""));
   CHECK(svg.find("nan") == std::string::npos);
+  // Readable without the docs: a visible title, a legend that names every line and the dots, a scale bar, in mm.
+  for (const char* text : {">" /* title */, "crease pattern</text>", ">mountain fold</text>", ">valley fold (towards you)</text>",
+                           ">boundary (cut)</text>", ">the axis (x = 0)</text>", ">apex S_j of profile j, on the axis</text>",
+                           " model units</text>", "mm\" height=\""}) {
+    CHECK_THAT(svg, Contains(text));
+  }
+  // To scale: every crease is its length in the pattern times --scale (mm).
+  const CreaseDrawing drawing = crease_drawing(a, 12.5);
+  CHECK(drawing.scale == 12.5);
+  std::size_t k = 0;
+  for (const SheetLine& line : drawing.page.lines) {
+    if (line.style == LineStyle::axis || k >= a.edges.size()) continue;
+    const Vec2 u = a.vertices[a.edges[k][0]], v = a.vertices[a.edges[k][1]];
+    CHECK((line.b - line.a).norm() == Approx(12.5 * (v - u).norm()).margin(1e-9));
+    ++k;
+  }
+  CHECK(k == a.edges.size());
+  CHECK_THROWS_WITH(crease_drawing(a, 0.0), Contains("--scale: must be a positive number of millimetres per model unit"));
+  const std::string pdf = crease_pdf(a);
+  CHECK(pdf.rfind("%PDF-", 0) == 0);
 }
 
 TEST_CASE("random patterns: the exact test agrees with the motion, the criterion with the exact test", "[developed]") {

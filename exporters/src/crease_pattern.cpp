@@ -4,6 +4,7 @@
 #include "phedra/number_format.h"
 
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -92,44 +93,66 @@ CreasePattern crease_pattern(const DevelopedPattern& pattern, const std::vector<
   return c;
 }
 
-std::string crease_svg(const CreasePattern& c) {
+CreaseDrawing crease_drawing(const CreasePattern& c, std::optional<double> scale) {
+  if (scale && !(*scale > 0.0 && std::isfinite(*scale))) {
+    throw InvalidInputError("--scale", "must be a positive number of millimetres per model unit");
+  }
   double lo_x = 0.0, hi_x = 0.0, lo_z = c.vertices.front().y(), hi_z = lo_z;
   for (const Vec2& p : c.vertices) {
-    lo_x = std::min(lo_x, p.x());
-    hi_x = std::max(hi_x, p.x());
-    lo_z = std::min(lo_z, p.y());
-    hi_z = std::max(hi_z, p.y());
+    lo_x = std::min(lo_x, p.x()), hi_x = std::max(hi_x, p.x());
+    lo_z = std::min(lo_z, p.y()), hi_z = std::max(hi_z, p.y());
   }
   for (double z : c.apex_heights) lo_z = std::min(lo_z, z), hi_z = std::max(hi_z, z);
-  const double span = std::max(hi_x - lo_x, hi_z - lo_z), margin = 0.05 * span, stroke = 0.004 * span;
-  auto X = [&](double x) { return format_number(x - lo_x + margin); };
-  auto Y = [&](double z) { return format_number(hi_z - z + margin); };
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << format_number(hi_x - lo_x + 2 * margin) << ' '
-      << format_number(hi_z - lo_z + 2 * margin) << "\" width=\"800\">\n<title>" << c.name << ": crease pattern, "
-      << c.mountains << " mountain, " << c.valleys << " valley creases (folded towards t = " << format_number(c.t)
-      << ")</title>\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  // The axis and its apexes.
-  svg << "<line x1=\"" << X(0) << "\" y1=\"" << Y(hi_z + margin) << "\" x2=\"" << X(0) << "\" y2=\"" << Y(lo_z - margin)
-      << "\" stroke=\"#999\" stroke-width=\"" << format_number(stroke * 0.5) << "\" stroke-dasharray=\""
-      << format_number(stroke * 2) << "\"/>\n";
-  for (std::size_t j = 0; j < c.apex_heights.size(); ++j) {
-    svg << "<circle class=\"apex\" cx=\"" << X(0) << "\" cy=\"" << Y(c.apex_heights[j]) << "\" r=\""
-        << format_number(stroke * 1.5) << "\" fill=\"#999\"><title>S_" << j << "</title></circle>\n";
-  }
+  const double w = std::max(hi_x - lo_x, 1e-9), h = std::max(hi_z - lo_z, 1e-9);
+  CreaseDrawing d;
+  d.scale = scale ? *scale : std::min(170.0 / w, 220.0 / h);
+  // Margins: 12 mm left (apex names beside the axis), 10 mm elsewhere; 30 mm header, 10 mm footer.
+  const double left = 12.0, margin = 10.0, header = 30.0, footer = 10.0;
+  d.size = Vec2(std::max(w * d.scale + left + margin, 190.0), h * d.scale + header + footer + 2.0 * margin);
+  auto at = [&](double x, double z) { return Vec2(left + (x - lo_x) * d.scale, margin + footer + (z - lo_z) * d.scale); };
+  SheetPage& page = d.page;
+  page.lines.push_back(SheetLine{at(0.0, lo_z), at(0.0, hi_z), LineStyle::axis});
+  bool any_flat = false;
   for (std::size_t k = 0; k < c.edges.size(); ++k) {
     const Vec2 a = c.vertices[c.edges[k][0]], b = c.vertices[c.edges[k][1]];
     const char m = c.assignment[k];
-    const char* colour = m == 'M' ? "#d62728" : m == 'V' ? "#1f77b4" : m == 'B' ? "black" : "#999";
-    svg << "<line class=\"" << m << "\" x1=\"" << X(a.x()) << "\" y1=\"" << Y(a.y()) << "\" x2=\"" << X(b.x())
-        << "\" y2=\"" << Y(b.y()) << "\" stroke=\"" << colour << "\" stroke-width=\"" << format_number(stroke) << "\"";
-    if (m == 'M') svg << " stroke-dasharray=\"" << format_number(stroke * 6) << ' ' << format_number(stroke * 2) << ' '
-                      << format_number(stroke) << ' ' << format_number(stroke * 2) << "\"";
-    if (m == 'V') svg << " stroke-dasharray=\"" << format_number(stroke * 4) << ' ' << format_number(stroke * 2) << "\"";
-    svg << "/>\n";
+    const LineStyle style = m == 'M' ? LineStyle::mountain : m == 'V' ? LineStyle::valley : m == 'B' ? LineStyle::cut : LineStyle::flat;
+    any_flat = any_flat || m == 'F';
+    page.lines.push_back(SheetLine{at(a.x(), a.y()), at(b.x(), b.y()), style});
   }
-  svg << "</svg>\n";
-  return svg.str();
+  for (std::size_t j = 0; j < c.apex_heights.size(); ++j) {
+    const Vec2 p = at(0.0, c.apex_heights[j]);
+    page.fills.push_back(SheetFill{{p + Vec2(-0.6, -0.6), p + Vec2(0.6, -0.6), p + Vec2(0.6, 0.6), p + Vec2(-0.6, 0.6)},
+                                   FillStyle::marker, std::nullopt});
+    const std::string name = "S" + std::to_string(j);
+    add_text(page, name, p + Vec2(-1.5 - text_width(name, 1.6), -0.8), 1.6, TextRole::note);
+  }
+  const double top = d.size.y() - margin, right = d.size.x() - margin;
+  add_text(page, c.name + ": crease pattern", Vec2(margin, top - 4.0), 4.0, TextRole::title);
+  char folded[160];
+  std::snprintf(folded, sizeof folded, "%zu mountain and %zu valley creases, folding towards t = %.6g; x: distance from the axis, z: height", c.mountains, c.valleys, c.t);
+  add_text(page, folded, Vec2(margin, top - 10.0), 2.2, TextRole::note);
+  Legend legend(page, margin, right, top - 16.0);
+  legend.line(LineStyle::mountain, "mountain fold");
+  legend.line(LineStyle::valley, "valley fold (towards you)");
+  legend.line(LineStyle::cut, "boundary (cut)");
+  if (any_flat) legend.line(LineStyle::flat, "crease that stays flat");
+  legend.line(LineStyle::axis, "the axis (x = 0)");
+  legend.fill(FillStyle::marker, "apex S_j of profile j, on the axis");
+  add_scale_bar(page, Vec2(margin, margin), d.scale, std::min(50.0, 0.4 * (right - margin)));
+  return d;
+}
+
+std::string crease_svg(const CreasePattern& c, std::optional<double> scale) {
+  const CreaseDrawing d = crease_drawing(c, scale);
+  return page_svg(d.page, d.size, c.name + ": crease pattern, " + std::to_string(c.mountains) + " mountain, " +
+                                      std::to_string(c.valleys) + " valley creases (folded towards t = " +
+                                      format_number(c.t) + "), mm");
+}
+
+std::string crease_pdf(const CreasePattern& c, std::optional<double> scale) {
+  const CreaseDrawing d = crease_drawing(c, scale);
+  return pages_pdf({d.page}, d.size, c.name + ": crease pattern");
 }
 
 nlohmann::json crease_fold(const CreasePattern& c) {

@@ -14,9 +14,6 @@ std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& op
 /// Fills piece.labels: S<k> along every seam side, then P<k> inside every panel.
 void place_labels(Piece& piece);
 
-/// Estimated advance of `text` at capital height `height` (the renderers stretch it to exactly this).
-double text_width(const std::string& text, double height);
-
 /// The largest label box (capital height at most max_height) inside `outline`,
 /// along edge `edge` (from corner edge to the next; reading upright either
 /// way) or, without edge, centred on the panel; clear of `avoid`. Nothing if

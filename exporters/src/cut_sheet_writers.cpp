@@ -1,4 +1,4 @@
-// Cut sheets as SVG (one file per page, in mm) and DXF (every page side by side).
+// Cut sheets as SVG (one file per page, in mm), PDF (every page) and DXF (every page side by side).
 
 #include "phedra/cut_sheets.h"
 
@@ -11,52 +11,9 @@ namespace phedra {
 namespace {
 
 std::string n(double x) {
-  // Sheets are in mm: a thousandth of a millimetre is finer than any cutter.
+  // Sheets are in mm: a ten-thousandth of a millimetre is finer than any cutter.
   const double r = std::round(x * 1e4) / 1e4;
   return format_number(r == 0.0 ? 0.0 : r);
-}
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
-
-const char* svg_style(LineStyle style) {
-  switch (style) {
-    case LineStyle::cut: return "stroke=\"#000\" stroke-width=\"0.25\"";
-    case LineStyle::mountain: return "stroke=\"#c62828\" stroke-width=\"0.3\" stroke-dasharray=\"3 1 0.6 1\"";
-    case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2 1\"";
-    case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.25\" stroke-dasharray=\"1 1\"";
-    case LineStyle::tab_fold: return "stroke=\"#777\" stroke-width=\"0.25\" stroke-dasharray=\"0.6 0.8\"";
-    case LineStyle::frame: return "stroke=\"#ccc\" stroke-width=\"0.2\"";
-  }
-  return "";
-}
-
-const char* svg_fill(FillStyle style) {
-  switch (style) {
-    case FillStyle::tab:
-    case FillStyle::swatch_tab: return "#e4e4e4";
-    case FillStyle::not_cuttable:
-    case FillStyle::swatch_not_cuttable: return "#f4a6a6";
-  }
-  return "none";
-}
-
-const char* text_colour(TextRole role) {
-  switch (role) {
-    case TextRole::seam: return "#0b57a8";
-    case TextRole::panel: return "#444";
-    default: return "#000";
-  }
 }
 
 const char* dxf_layer(LineStyle style) {
@@ -67,50 +24,22 @@ const char* dxf_layer(LineStyle style) {
     case LineStyle::flat: return "FLAT";
     case LineStyle::tab_fold: return "TAB_FOLD";
     case LineStyle::frame: return "FRAME";
+    case LineStyle::axis: return "AXIS";
   }
   return "0";
 }
 
+
+std::string title(const CutSheets& s, std::size_t k) {
+  return s.name + ": cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
+         to_string(s.mode) + "), mm, " + format_number(s.scale) + " mm per model unit";
+}
+
 }  // namespace
 
-/// Font size giving capital height h (DejaVu Sans and Helvetica: capitals 0.72 em).
-double font_size_for_capitals(double h) { return h / 0.72; }
+std::string sheet_page_svg(const CutSheets& s, std::size_t k) { return page_svg(s.pages.at(k), s.page, title(s, k)); }
 
-std::string sheet_page_svg(const CutSheets& s, std::size_t k) {
-  const SheetPage& page = s.pages.at(k);
-  const double H = s.page.y();
-  auto X = [](const Vec2& p) { return n(p.x()); };
-  auto Y = [H](const Vec2& p) { return n(H - p.y()); };
-  std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << n(s.page.x()) << "mm\" height=\"" << n(H)
-      << "mm\" viewBox=\"0 0 " << n(s.page.x()) << ' ' << n(H) << "\">\n<title>" << escape(s.name) << ": cut sheet "
-      << k + 1 << " of " << s.pages.size() << " (" << to_string(s.mode) << "), mm, " << format_number(s.scale)
-      << " mm per model unit</title>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
-  for (const SheetFill& f : page.fills) {
-    svg << "<polygon fill=\"" << svg_fill(f.style) << '"';
-    if (f.panel) svg << " class=\"not-cuttable\" data-panel=\"" << *f.panel << '"';
-    svg << " points=\"";
-    for (const Vec2& c : f.outline) svg << X(c) << ',' << Y(c) << ' ';
-    svg << "\"/>\n";
-  }
-  svg << "<g fill=\"none\" stroke-linecap=\"round\">\n";
-  for (const SheetLine& l : page.lines) {
-    svg << "<line x1=\"" << X(l.a) << "\" y1=\"" << Y(l.a) << "\" x2=\"" << X(l.b) << "\" y2=\"" << Y(l.b) << "\" "
-        << svg_style(l.style) << "/>\n";
-  }
-  svg << "</g>\n<g font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n";
-  for (const SheetText& t : page.texts) {
-    const double degrees = std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI;
-    svg << "<text x=\"" << X(t.box.origin) << "\" y=\"" << Y(t.box.origin) << "\" font-size=\""
-        << n(font_size_for_capitals(t.box.height)) << "\" textLength=\"" << n(t.box.width)
-        << "\" lengthAdjust=\"spacingAndGlyphs\" fill=\"" << text_colour(t.role) << '"'
-        << (t.role == TextRole::title ? " font-weight=\"bold\"" : "");
-    if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << n(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
-    svg << '>' << escape(t.text) << "</text>\n";
-  }
-  svg << "</g>\n</svg>\n";
-  return svg.str();
-}
+std::string cut_sheets_pdf(const CutSheets& s) { return pages_pdf(s.pages, s.page, s.name + " - cut sheets"); }
 
 std::string cut_sheets_dxf(const CutSheets& s) {
   std::ostringstream dxf;

@@ -16,8 +16,6 @@
 namespace phedra {
 namespace {
 
-using sheets::text_width;
-
 constexpr double header_mm = 28.0;  ///< title, up to three legend rows
 constexpr double footer_mm = 6.0;
 
@@ -91,72 +89,27 @@ void place(Piece& piece, const Placement& at) {
   }
 }
 
-/// 1, 2 or 5 times a power of ten, at most x.
-double round_down_125(double x) {
-  const double p = std::pow(10.0, std::floor(std::log10(x)));
-  for (double m : {5.0, 2.0, 1.0}) {
-    if (m * p <= x) return m * p;
-  }
-  return p;
-}
-
-void text(SheetPage& page, const std::string& s, Vec2 at, double h, TextRole role = TextRole::legend) {
-  page.texts.push_back(SheetText{s, Box2{at, Vec2::UnitX(), text_width(s, h), h}, role});
-}
-
 /// Title, legend, scale bar and footer of page k of n.
 void decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat) {
   const double m = 10.0, top = s.page.y() - m, right = s.page.x() - m;
-  text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
-                 to_string(s.mode) + ")",
-       Vec2(m, top - 4.0), 4.0, TextRole::title);
-  // Legend: items flow along rows under the title.
-  const double h = 2.2;
-  double x = m, row = top - 11.0;
-  auto room = [&](double width) {
-    if (x > m && x + width > right) x = m, row -= 6.0;
-  };
-  auto swatch_line = [&](LineStyle style, const std::string& what) {
-    room(12.0 + text_width(what, h));
-    page.lines.push_back(SheetLine{Vec2(x, row + 0.8), Vec2(x + 10.0, row + 0.8), style});
-    text(page, what, Vec2(x + 12.0, row), h);
-    x += 12.0 + text_width(what, h) + 6.0;
-  };
-  auto swatch_fill = [&](FillStyle style, const std::string& what) {
-    room(12.0 + text_width(what, h));
-    page.fills.push_back(SheetFill{{Vec2(x, row - 0.5), Vec2(x + 10.0, row - 0.5), Vec2(x + 8.0, row + 2.7),
-                                    Vec2(x + 2.0, row + 2.7)},
-                                   style, std::nullopt});
-    text(page, what, Vec2(x + 12.0, row), h);
-    x += 12.0 + text_width(what, h) + 6.0;
-  };
-  auto sample = [&](const std::string& label, TextRole role, const std::string& what) {
-    room(text_width(label, h) + 2.0 + text_width(what, h));
-    text(page, label, Vec2(x, row), h, role);
-    x += text_width(label, h) + 2.0;
-    text(page, what, Vec2(x, row), h);
-    x += text_width(what, h) + 6.0;
-  };
-  swatch_line(LineStyle::cut, "cut");
-  swatch_line(LineStyle::mountain, "mountain fold");
-  swatch_line(LineStyle::valley, "valley fold");
-  if (any_flat) swatch_line(LineStyle::flat, "hinge flat at t* (crease it)");
-  swatch_line(LineStyle::tab_fold, "fold the tab under");
-  swatch_fill(FillStyle::swatch_tab, "glue tab");
-  sample("S1", TextRole::seam, "glue to the other S1");
-  sample("P7", TextRole::panel, s.mode == PieceMode::cells ? "panel 7 (a wall: glue its two copies face to face)"
-                                                            : "panel 7 of the exports");
-  if (any_uncuttable) swatch_fill(FillStyle::swatch_not_cuttable, "not one plate (see phedra check)");
+  add_text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
+                     to_string(s.mode) + ")",
+           Vec2(m, top - 4.0), 4.0, TextRole::title);
+  Legend legend(page, m, right, top - 11.0);
+  legend.line(LineStyle::cut, "cut");
+  legend.line(LineStyle::mountain, "mountain fold");
+  legend.line(LineStyle::valley, "valley fold");
+  if (any_flat) legend.line(LineStyle::flat, "hinge flat at t* (crease it)");
+  legend.line(LineStyle::tab_fold, "fold the tab under");
+  legend.fill(FillStyle::swatch_tab, "glue tab");
+  legend.sample("S1", TextRole::seam, "glue to the other S1");
+  legend.sample("P7", TextRole::panel, s.mode == PieceMode::cells ? "panel 7 (a wall: glue its two copies face to face)"
+                                                                   : "panel 7 of the exports");
+  if (any_uncuttable) legend.fill(FillStyle::swatch_not_cuttable, "not one plate (see phedra check)");
   // Footer: scale bar and printing note.
-  const double bar = round_down_125(std::min(50.0, 0.3 * (right - m)));
-  const double y = m;
-  page.lines.push_back(SheetLine{Vec2(m, y + 1.0), Vec2(m + bar, y + 1.0), LineStyle::cut});
-  page.lines.push_back(SheetLine{Vec2(m, y), Vec2(m, y + 2.0), LineStyle::cut});
-  page.lines.push_back(SheetLine{Vec2(m + bar, y), Vec2(m + bar, y + 2.0), LineStyle::cut});
-  const std::string scale_text = six(bar) + " mm = " + six(bar / s.scale) + " model units";
-  text(page, scale_text, Vec2(m + bar + 3.0, y), h, TextRole::note);
+  add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
   const std::string note = "print at 100 % (actual size)";
-  text(page, note, Vec2(right - text_width(note, h), y), h, TextRole::note);
+  add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
 }
 
 }  // namespace
@@ -180,7 +133,7 @@ std::string to_string(PieceMode mode) {
 
 Vec2 page_size_from_string(const std::string& name) {
   std::string lower = name;
-  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (lower == "a4") return {210.0, 297.0};
   if (lower == "a3") return {297.0, 420.0};
   if (lower == "letter") return {215.9, 279.4};

@@ -59,15 +59,6 @@ Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double 
 
 }  // namespace
 
-double text_width(const std::string& text, double height) {
-  double w = 0.0;
-  for (char c : text) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    w += std::isdigit(u) || std::isupper(u) ? 0.88 : std::islower(u) ? 0.78 : c == ' ' ? 0.45 : 0.6;
-  }
-  return w * height;
-}
-
 Box2 upright(const Box2& box) {
   const bool upside_down = box.axis.x() < -1e-9 || (std::abs(box.axis.x()) <= 1e-9 && box.axis.y() < 0.0);
   if (!upside_down) return box;

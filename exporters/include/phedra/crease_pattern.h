@@ -8,9 +8,11 @@
 // a mountain away; FOLD's foldAngle is positive for valleys.
 
 #include "phedra/developed_pattern.h"
+#include "phedra/sheet_page.h"
 
 #include <nlohmann/json.hpp>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,7 +41,17 @@ struct CreasePattern {
 CreasePattern crease_pattern(const DevelopedPattern& pattern, const std::vector<int>& fold, double t_assignment,
                              double t);
 
-std::string crease_svg(const CreasePattern& pattern);
+/// The crease pattern drawn to scale on a page of its own: title, legend
+/// (mountain, valley, boundary, the axis and the apexes on it), scale bar.
+struct CreaseDrawing {
+  SheetPage page;
+  Vec2 size;           ///< the page, mm
+  double scale = 1.0;  ///< mm per model unit
+};
+/// `scale` in mm per model unit; unset: the pattern fills about 170 x 220 mm.
+CreaseDrawing crease_drawing(const CreasePattern& pattern, std::optional<double> scale = std::nullopt);
+std::string crease_svg(const CreasePattern& pattern, std::optional<double> scale = std::nullopt);
+std::string crease_pdf(const CreasePattern& pattern, std::optional<double> scale = std::nullopt);
 nlohmann::json crease_fold(const CreasePattern& pattern);
 
 }  // namespace phedra

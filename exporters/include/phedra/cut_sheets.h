@@ -17,7 +17,7 @@
 
 #include "phedra/design.h"
 #include "phedra/panel_shape.h"
-#include "phedra/sheet_geometry.h"
+#include "phedra/sheet_page.h"
 
 #include <optional>
 #include <string>
@@ -28,26 +28,6 @@ namespace phedra {
 enum class PieceMode { strips, columns, cells, panels };
 PieceMode piece_mode_from_string(const std::string& name);  ///< throws InvalidInputError("--pieces")
 std::string to_string(PieceMode mode);
-
-enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame };
-enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable };
-enum class TextRole { panel, seam, title, legend, note };
-
-struct SheetLine {
-  Vec2 a, b;
-  LineStyle style = LineStyle::cut;
-};
-struct SheetFill {
-  Polygon2 outline;
-  FillStyle style = FillStyle::tab;
-  std::optional<std::size_t> panel;  ///< not_cuttable: the panel (P<k>)
-};
-/// A label: its text fills `box` (capital height = box.height, advance = box.width), reading along box.axis.
-struct SheetText {
-  std::string text;
-  Box2 box;
-  TextRole role = TextRole::panel;
-};
 
 /// A panel of a piece: its outline in the piece (mm), its corners' mesh vertices.
 struct PiecePanel {
@@ -101,13 +81,6 @@ struct CutSheetOptions {
 /// "a4", "letter", "a3" or "WxH" in mm.
 Vec2 page_size_from_string(const std::string& name);  ///< throws InvalidInputError("--page")
 
-struct SheetPage {
-  std::vector<SheetLine> lines;
-  std::vector<SheetFill> fills;
-  std::vector<SheetText> texts;
-  std::vector<std::size_t> pieces;        ///< indices into CutSheets::pieces on this page
-};
-
 struct CutSheets {
   std::string name;
   PieceMode mode = PieceMode::strips;
@@ -129,11 +102,9 @@ constexpr double readable_label_mm = 1.2;
 CutSheets cut_sheets(const Design& design, const CutSheetOptions& options = {});
 
 /// Renderers: one SVG per page (mm), a DXF of every page side by side (layers CUT,
-/// MOUNTAIN, VALLEY, TAB_FOLD, LABELS), and (cut_sheets_pdf.h) PDF and PNG.
+/// MOUNTAIN, VALLEY, FLAT, TAB_FOLD, FRAME, LABELS); PDF and PNG: sheet_page.h.
 std::string sheet_page_svg(const CutSheets& sheets, std::size_t page);
 std::string cut_sheets_dxf(const CutSheets& sheets);
-
-/// Font size giving capital height h (DejaVu Sans and Helvetica: capitals 0.72 em).
-double font_size_for_capitals(double h);
+std::string cut_sheets_pdf(const CutSheets& sheets);
 
 }  // namespace phedra

@@ -1,4 +1,4 @@
-#include "phedra/cut_sheets_pdf.h"
+#include "phedra/sheet_page.h"
 
 #include "phedra/errors.h"
 
@@ -28,18 +28,21 @@ void set_line(cairo_t* cr, LineStyle style) {
     case LineStyle::flat: cairo_set_source_rgb(cr, 0.18, 0.49, 0.2), cairo_set_line_width(cr, 0.25), dash({1, 1}); break;
     case LineStyle::tab_fold: cairo_set_source_rgb(cr, 0.47, 0.47, 0.47), cairo_set_line_width(cr, 0.25), dash({0.6, 0.8}); break;
     case LineStyle::frame: cairo_set_source_rgb(cr, 0.8, 0.8, 0.8), cairo_set_line_width(cr, 0.2), dash({}); break;
+    case LineStyle::axis: cairo_set_source_rgb(cr, 0.6, 0.6, 0.6), cairo_set_line_width(cr, 0.2), dash({4, 1.5}); break;
   }
 }
 
-/// Draws page k in mm (y up on the sheet, down in cairo).
-void draw(cairo_t* cr, const CutSheets& s, std::size_t k) {
-  const SheetPage& page = s.pages.at(k);
-  const double H = s.page.y();
+/// Draws a page in mm (y up on the sheet, down in cairo).
+void draw(cairo_t* cr, const SheetPage& page, double H) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   for (const SheetFill& f : page.fills) {
     const bool tab = f.style == FillStyle::tab || f.style == FillStyle::swatch_tab;
-    tab ? cairo_set_source_rgb(cr, 0.894, 0.894, 0.894) : cairo_set_source_rgb(cr, 0.957, 0.651, 0.651);
+    if (f.style == FillStyle::marker) {
+      cairo_set_source_rgb(cr, 0.53, 0.53, 0.53);
+    } else {
+      tab ? cairo_set_source_rgb(cr, 0.894, 0.894, 0.894) : cairo_set_source_rgb(cr, 0.957, 0.651, 0.651);
+    }
     for (std::size_t i = 0; i < f.outline.size(); ++i) {
       (i ? cairo_line_to : cairo_move_to)(cr, f.outline[i].x(), H - f.outline[i].y());
     }
@@ -85,16 +88,16 @@ void check(cairo_status_t status, const char* what) {
 
 }  // namespace
 
-std::string cut_sheets_pdf(const CutSheets& s) {
+std::string pages_pdf(const std::vector<SheetPage>& pages, Vec2 size, const std::string& title) {
   std::string out;
   const double points = 72.0 / 25.4;
-  cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(append, &out, s.page.x() * points, s.page.y() * points);
-  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, (s.name + " - cut sheets").c_str());
-  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "phedra outlines");
+  cairo_surface_t* surface = cairo_pdf_surface_create_for_stream(append, &out, size.x() * points, size.y() * points);
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_TITLE, title.c_str());
+  cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATOR, "phedra");
   cairo_t* cr = cairo_create(surface);
   cairo_scale(cr, points, points);
-  for (std::size_t k = 0; k < s.pages.size(); ++k) {
-    draw(cr, s, k);
+  for (const SheetPage& page : pages) {
+    draw(cr, page, size.y());
     cairo_show_page(cr);
   }
   const cairo_status_t status = cairo_status(cr);
@@ -107,13 +110,13 @@ std::string cut_sheets_pdf(const CutSheets& s) {
   return out;
 }
 
-std::string sheet_page_png(const CutSheets& s, std::size_t k, double dpi) {
+std::string page_png(const SheetPage& page, Vec2 size, double dpi) {
   const double pixels = dpi / 25.4;
-  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(std::ceil(s.page.x() * pixels)),
-                                                        static_cast<int>(std::ceil(s.page.y() * pixels)));
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(std::ceil(size.x() * pixels)),
+                                                        static_cast<int>(std::ceil(size.y() * pixels)));
   cairo_t* cr = cairo_create(surface);
   cairo_scale(cr, pixels, pixels);
-  draw(cr, s, k);
+  draw(cr, page, size.y());
   const cairo_status_t status = cairo_status(cr);
   cairo_destroy(cr);
   std::string out;

@@ -1,0 +1,184 @@
+// A page's renderers and the legend and scale-bar builders (sheet_page.h).
+
+#include "phedra/sheet_page.h"
+
+#include "phedra/number_format.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace phedra {
+namespace {
+
+std::string n(double x) {
+  // Sheets are in mm: a thousandth of a millimetre is finer than any cutter.
+  const double r = std::round(x * 1e4) / 1e4;
+  return format_number(r == 0.0 ? 0.0 : r);
+}
+
+std::string escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+const char* style_class(LineStyle style) {
+  switch (style) {
+    case LineStyle::cut: return "cut";
+    case LineStyle::mountain: return "mountain";
+    case LineStyle::valley: return "valley";
+    case LineStyle::flat: return "flat";
+    case LineStyle::tab_fold: return "tab-fold";
+    case LineStyle::frame: return "frame";
+    case LineStyle::axis: return "axis";
+  }
+  return "";
+}
+
+const char* svg_style(LineStyle style) {
+  switch (style) {
+    case LineStyle::cut: return "stroke=\"#000\" stroke-width=\"0.25\"";
+    case LineStyle::mountain: return "stroke=\"#c62828\" stroke-width=\"0.3\" stroke-dasharray=\"3 1 0.6 1\"";
+    case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2 1\"";
+    case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.25\" stroke-dasharray=\"1 1\"";
+    case LineStyle::tab_fold: return "stroke=\"#777\" stroke-width=\"0.25\" stroke-dasharray=\"0.6 0.8\"";
+    case LineStyle::frame: return "stroke=\"#ccc\" stroke-width=\"0.2\"";
+    case LineStyle::axis: return "stroke=\"#999\" stroke-width=\"0.2\" stroke-dasharray=\"4 1.5\"";
+  }
+  return "";
+}
+
+const char* svg_fill(FillStyle style) {
+  switch (style) {
+    case FillStyle::tab:
+    case FillStyle::swatch_tab: return "#e4e4e4";
+    case FillStyle::not_cuttable:
+    case FillStyle::swatch_not_cuttable: return "#f4a6a6";
+    case FillStyle::marker: return "#888";
+  }
+  return "none";
+}
+
+const char* text_colour(TextRole role) {
+  switch (role) {
+    case TextRole::seam: return "#0b57a8";
+    case TextRole::panel: return "#444";
+    default: return "#000";
+  }
+}
+
+/// 1, 2 or 5 times a power of ten, at most x.
+double round_down_125(double x) {
+  const double p = std::pow(10.0, std::floor(std::log10(x)));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * p <= x) return m * p;
+  }
+  return p;
+}
+
+std::string six(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", x);
+  return buffer;
+}
+
+}  // namespace
+
+double font_size_for_capitals(double h) { return h / 0.72; }
+
+double text_width(const std::string& text, double height) {
+  double w = 0.0;
+  for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
+    w += std::isdigit(u) || std::isupper(u) ? 0.88 : std::islower(u) ? 0.78 : c == ' ' ? 0.45 : 0.6;
+  }
+  return w * height;
+}
+
+void add_text(SheetPage& page, const std::string& s, Vec2 at, double h, TextRole role) {
+  page.texts.push_back(SheetText{s, Box2{at, Vec2::UnitX(), text_width(s, h), h}, role});
+}
+
+void Legend::room(double width) {
+  if (x_ > left_ && x_ + width > right_) x_ = left_, row_ -= 2.7 * h_;
+}
+
+void Legend::line(LineStyle style, const std::string& what) {
+  room(12.0 + text_width(what, h_));
+  page_.lines.push_back(SheetLine{Vec2(x_, row_ + 0.36 * h_), Vec2(x_ + 10.0, row_ + 0.36 * h_), style});
+  add_text(page_, what, Vec2(x_ + 12.0, row_), h_);
+  x_ += 12.0 + text_width(what, h_) + 6.0;
+}
+
+void Legend::fill(FillStyle style, const std::string& what) {
+  room(12.0 + text_width(what, h_));
+  const double y0 = row_ - 0.2 * h_, y1 = row_ + 1.2 * h_;
+  Polygon2 shape = style == FillStyle::marker
+                       ? Polygon2{Vec2(x_ + 4.4, row_ + 0.1 * h_), Vec2(x_ + 5.6, row_ + 0.1 * h_), Vec2(x_ + 5.6, row_ + 0.1 * h_ + 1.2),
+                                  Vec2(x_ + 4.4, row_ + 0.1 * h_ + 1.2)}
+                       : Polygon2{Vec2(x_, y0), Vec2(x_ + 10.0, y0), Vec2(x_ + 8.0, y1), Vec2(x_ + 2.0, y1)};
+  page_.fills.push_back(SheetFill{std::move(shape), style, std::nullopt});
+  add_text(page_, what, Vec2(x_ + 12.0, row_), h_);
+  x_ += 12.0 + text_width(what, h_) + 6.0;
+}
+
+void Legend::sample(const std::string& label, TextRole role, const std::string& what) {
+  room(text_width(label, h_) + 2.0 + text_width(what, h_));
+  add_text(page_, label, Vec2(x_, row_), h_, role);
+  x_ += text_width(label, h_) + 2.0;
+  add_text(page_, what, Vec2(x_, row_), h_);
+  x_ += text_width(what, h_) + 6.0;
+}
+
+void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest) {
+  const double bar = round_down_125(longest);
+  page.lines.push_back(SheetLine{at + Vec2(0, 1.0), at + Vec2(bar, 1.0), LineStyle::cut});
+  page.lines.push_back(SheetLine{at, at + Vec2(0, 2.0), LineStyle::cut});
+  page.lines.push_back(SheetLine{at + Vec2(bar, 0), at + Vec2(bar, 2.0), LineStyle::cut});
+  add_text(page, six(bar) + " mm = " + six(bar / scale) + " model units", at + Vec2(bar + 3.0, 0.0), 2.2, TextRole::note);
+}
+
+std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title) {
+  const double H = size.y();
+  auto X = [](const Vec2& p) { return n(p.x()); };
+  auto Y = [H](const Vec2& p) { return n(H - p.y()); };
+  std::ostringstream svg;
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << n(size.x()) << "mm\" height=\"" << n(H)
+      << "mm\" viewBox=\"0 0 " << n(size.x()) << ' ' << n(H) << "\">\n<title>" << escape(title)
+      << "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
+  for (const SheetFill& f : page.fills) {
+    svg << "<polygon fill=\"" << svg_fill(f.style) << '"';
+    if (f.panel) svg << " class=\"not-cuttable\" data-panel=\"" << *f.panel << '"';
+    svg << " points=\"";
+    for (const Vec2& c : f.outline) svg << X(c) << ',' << Y(c) << ' ';
+    svg << "\"/>\n";
+  }
+  svg << "<g fill=\"none\" stroke-linecap=\"round\">\n";
+  for (const SheetLine& l : page.lines) {
+    svg << "<line class=\"" << style_class(l.style) << "\" x1=\"" << X(l.a) << "\" y1=\"" << Y(l.a) << "\" x2=\"" << X(l.b) << "\" y2=\"" << Y(l.b) << "\" "
+        << svg_style(l.style) << "/>\n";
+  }
+  svg << "</g>\n<g font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n";
+  for (const SheetText& t : page.texts) {
+    const double degrees = std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI;
+    svg << "<text x=\"" << X(t.box.origin) << "\" y=\"" << Y(t.box.origin) << "\" font-size=\""
+        << n(font_size_for_capitals(t.box.height)) << "\" textLength=\"" << n(t.box.width)
+        << "\" lengthAdjust=\"spacingAndGlyphs\" fill=\"" << text_colour(t.role) << '"'
+        << (t.role == TextRole::title ? " font-weight=\"bold\"" : "");
+    if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << n(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
+    svg << '>' << escape(t.text) << "</text>\n";
+  }
+  svg << "</g>\n</svg>\n";
+  return svg.str();
+}
+
+}  // namespace phedra
