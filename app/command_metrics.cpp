@@ -44,8 +44,10 @@ void add_metrics_command(CLI::App& app, Context& context) {
       }
     }
     const Design design = load(context, o->preset);
-    const MetricsReport report = metamaterial_metrics(design, o->metrics);
+    MetricsReport report = metamaterial_metrics(design, o->metrics);
     const BuildabilityReport buildability = assess_for_output(design);
+    report.buildability_known = true;
+    report.buildable = buildability.interval();
     nlohmann::json document = report.to_json();
     document["buildability"] = buildability.file_json();
     for (const std::string& path : o->outputs) {

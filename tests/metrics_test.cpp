@@ -3,6 +3,7 @@
 
 #include "support/cli_run.h"
 #include "phedra/metamaterial_metrics.h"
+#include "phedra/plot_axes.h"
 #include "phedra/tube.h"
 #include "support/random_input.h"
 
@@ -150,5 +151,95 @@ TEST_CASE("phedra metrics writes CSV, JSON and SVG, and a bad format writes noth
   REQUIRE(open.code == 0);
   CHECK(nlohmann::json::parse(open.out)["at_t_star"]["volume"].is_null());
   CHECK(phedra_cli({"metrics", grid, "--samples", "1"}).code == 2);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+/// The texts of elements of one class in an SVG, in order.
+std::vector<std::string> texts_of_class(const std::string& svg, const std::string& cls) {
+  std::vector<std::string> out;
+  const std::string key = "class=\"" + cls + "\"";
+  for (std::size_t at = svg.find(key); at != std::string::npos; at = svg.find(key, at + 1)) {
+    const std::size_t open = svg.find('>', at) + 1, close = svg.find('<', open);
+    out.push_back(svg.substr(open, close - open));
+  }
+  return out;
+}
+
+/// Ticks are consecutive multiples of one step of 1, 2 or 5 times a power of ten.
+void check_round_ticks(const std::vector<std::string>& labels) {
+  REQUIRE(labels.size() >= 2);
+  std::vector<double> v;
+  for (const std::string& l : labels) v.push_back(std::stod(l));
+  const double step = v[1] - v[0];
+  REQUIRE(step > 0.0);
+  const double mantissa = step / std::pow(10.0, std::floor(std::log10(step) + 1e-9));
+  CHECK((std::abs(mantissa - 1.0) < 1e-6 || std::abs(mantissa - 2.0) < 1e-6 || std::abs(mantissa - 5.0) < 1e-6));
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    CHECK(v[k] / step == Approx(std::round(v[k] / step)).margin(1e-6));
+    if (k > 0) CHECK(v[k] - v[k - 1] == Approx(step).epsilon(1e-6));
+    CHECK(labels[k].size() <= 12);  // no rounding noise: 0.30000000000000004
+  }
+}
+
+}  // namespace
+
+TEST_CASE("round ticks: 1-2-5 steps, labels without noise, ranges ending on ticks", "[metrics][plots]") {
+  const Ticks t = round_ticks(0.827, 1.135);  // the old plot's ticks: 0.827, 0.981, 1.135
+  CHECK(t.step == Approx(0.1));
+  CHECK(t.labels == std::vector<std::string>{"0.9", "1.0", "1.1"});
+  CHECK(round_ticks(-10.0, 10.0).labels == std::vector<std::string>{"-10", "-5", "0", "5", "10"});
+  CHECK(round_ticks(0.0, 0.3, 6).labels == std::vector<std::string>{"0", "0.05", "0.10", "0.15", "0.20", "0.25", "0.30"});
+  const auto range = round_range(3.632, 4.85);  // the old plot's 3.632 .. 4.85
+  CHECK(range.first == Approx(3.5));
+  CHECK(range.second == Approx(5.0));
+  CHECK(tick_label(-1e-17, 0.1) == "0");
+  CHECK(tick_label(8e6, 2e6) == "8e+06");
+  for (double lo : {-3.7, 0.0, 0.001, 17.0, -1234.5}) {
+    for (double span : {1e-3, 0.07, 1.0, 42.0, 5e4}) {
+      CAPTURE(lo, span);
+      check_round_ticks(round_ticks(lo, lo + span).labels);
+    }
+  }
+}
+
+TEST_CASE("metrics plots: axes with units and round ticks, the interval's share, clipping and non-buildable parts shown", "[metrics][plots][cli]") {
+  const fs::path dir = fs::temp_directory_path() / ("phedra-plots-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  REQUIRE(phedra_cli({"metrics", presets + "/grid-3x3.json", "-o", (dir / "g.svg").string()}).code == 0);
+  const std::string svg = read(dir / "g.svg");
+  const std::vector<std::string> y = texts_of_class(svg, "y-tick"), x = texts_of_class(svg, "x-tick");
+  // Two plots: each with its own y ticks and the same t ticks.
+  CHECK(texts_of_class(svg, "y-label") ==
+        std::vector<std::string>{"ratio to the value at t* (dimensionless)", "Poisson's ratio (dimensionless)"});
+  CHECK(texts_of_class(svg, "x-label").size() == 2);
+  CHECK_THAT(texts_of_class(svg, "x-label")[0], Contains("t: height of the moving apex (model units)"));
+  CHECK(texts_of_class(svg, "fraction-tick") ==
+        std::vector<std::string>{"0 %", "25 %", "50 %", "75 %", "100 %", "0 %", "25 %", "50 %", "75 %", "100 %"});
+  REQUIRE(x.size() % 2 == 0);
+  check_round_ticks(std::vector<std::string>(x.begin(), x.begin() + static_cast<long>(x.size() / 2)));
+  // The Poisson plot of grid-3x3 is clipped: its axis stops at +-10, the clipping is stated and marked.
+  const std::size_t split = svg.find("Effective Poisson");
+  const std::vector<std::string> y1 = texts_of_class(svg.substr(0, split), "y-tick"),
+                                 y2 = texts_of_class(svg.substr(split), "y-tick");
+  check_round_ticks(y1);
+  check_round_ticks(y2);
+  CHECK(y2.front() == "-10");
+  CHECK(y2.back() == "10");
+  CHECK(texts_of_class(svg, "clip-note").size() == 1);
+  CHECK_THAT(svg, Contains("class=\"clipped\""));
+  CHECK(svg.find("not-buildable") == std::string::npos);  // buildable over the whole interval
+  // A design buildable over part of its interval: the rest shaded, in both plots, and in the legend.
+  REQUIRE(phedra_cli({"metrics", std::string(PHEDRA_TEST_DATA_DIR) + "/partly-buildable.json", "-o", (dir / "p.svg").string()}).code == 0);
+  const std::string partly = read(dir / "p.svg");
+  std::size_t shaded = 0;
+  for (std::size_t at = partly.find("class=\"not-buildable\""); at != std::string::npos; at = partly.find("class=\"not-buildable\"", at + 1)) ++shaded;
+  CHECK(shaded == 2);
+  CHECK_THAT(partly, Contains(">not buildable</text>"));
+  // Unclipped data: no note, the axis fits the data.
+  REQUIRE(phedra_cli({"metrics", presets + "/parallelogram-tube.json", "-o", (dir / "t.svg").string()}).code == 0);
+  const std::string tube = read(dir / "t.svg");
+  if (tube.find("class=\"clipped\"") == std::string::npos) CHECK(texts_of_class(tube, "clip-note").empty());
   fs::remove_all(dir);
 }

@@ -25,6 +25,20 @@ void append_number(std::string& out, double value) {
 #endif
 }
 
+namespace {
+bool full_precision = false;
+}  // namespace
+
+std::string format_significant(double value, int digits) {
+  std::array<char, 40> buffer{};
+  const int length = std::snprintf(buffer.data(), buffer.size(), "%.*g", digits, value == 0.0 ? 0.0 : value);
+  return std::string(buffer.data(), static_cast<std::size_t>(length));
+}
+
+std::string format_human(double value) { return full_precision ? format_number(value) : format_significant(value, 6); }
+
+void set_full_precision(bool full) { full_precision = full; }
+
 std::string format_number(double value) {
   std::string out;
   append_number(out, value);

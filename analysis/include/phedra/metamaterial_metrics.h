@@ -44,10 +44,18 @@ struct MetricsReport {
   /// Largest over smallest over the interval: extents and volume.
   std::array<double, 3> extent_deployment{};
   std::optional<double> volume_deployment;
+  /// For the plots: the buildable part of the interval around t* (buildability.h),
+  /// none when nothing is buildable; known once the command has assessed it.
+  bool buildability_known = false;
+  std::optional<std::pair<double, double>> buildable;
+  /// The Poisson plot shows values within +-this (beyond: marked at the edge).
+  double poisson_clip = 10.0;
 
   nlohmann::json to_json() const;
   std::string to_csv() const;
-  /// Two plots against t: extents and volume relative to t*, and Poisson's ratios.
+  /// Two plots against t: extents and volume relative to t*, and Poisson's ratios;
+  /// round ticks, axis labels with units, the share of the interval, the parts
+  /// that are not buildable shaded.
   std::string to_svg() const;
 };
 
