@@ -17,12 +17,12 @@ BuildabilityReport assess_for_output(const Design& design, std::optional<std::si
 void warn_unless_buildable(Context& context, const BuildabilityReport& r, double lo, double hi,
                            const std::string& restrict_hint) {
   if (r.buildable_over(lo, hi)) return;
-  const std::string range = lo == hi ? "t = " + format_number(lo) : "[" + format_number(lo) + ", " + format_number(hi) + "]";
+  const std::string range = lo == hi ? "t = " + format_human(lo) : "[" + format_human(lo) + ", " + format_human(hi) + "]";
   context.err << "phedra: warning: what is written (" << range << ") is not buildable: " << r.summary();
   const auto part = r.interval();
   if (part && part->second > part->first) {
     context.err << "; " << (restrict_hint.empty() ? "the buildable part is" : restrict_hint + " writes the buildable part")
-                << " [" << format_number(part->first) << ", " << format_number(part->second) << "]";
+                << " [" << format_human(part->first) << ", " << format_human(part->second) << "]";
   }
   if (!r.panels_simple()) {
     context.err << "; `phedra check " << context.preset << "` names the cause of each invalid panel and the field to change";

@@ -2,6 +2,7 @@
 
 #include "commands.h"
 #include "phedra/errors.h"
+#include "phedra/number_format.h"
 
 #include <ostream>
 
@@ -27,6 +28,13 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   add_generate_command(app, context);
   add_view_command(app, context);
   add_bench_command(app, context);
+  // Numbers meant for people: 6 significant digits unless asked (files keep full precision).
+  set_full_precision(false);
+  const std::string precision_help = "Print numbers with full (round-trip) precision instead of 6 significant digits "
+                                     "(files and JSON always have full precision)";
+  for (CLI::App* command : app.get_subcommands({})) {
+    command->add_flag_callback("--full-precision", [] { set_full_precision(true); }, precision_help)->trigger_on_parse();
+  }
 
   std::vector<std::string> reversed(args.rbegin(), args.rend());
   try {

@@ -81,15 +81,15 @@ void refuse_fold_through(Context& context, const DevelopedPattern& pattern, cons
       break;
     }
     list += (k ? ", " : "") + std::to_string(e) + " (" + std::string(1, creases.assignment[e]) + ", " +
-            format_number(creases.fold_angle[e]) + " deg at fraction " + format_number(o.fraction) + ")";
+            format_human(creases.fold_angle[e]) + " deg at fraction " + format_human(o.fraction) + ")";
   }
   const std::string choices = o.fold.empty() ? std::string(pattern.strips(), '+') : o.fold;
   context.err << "phedra: " << o.pattern << ": with strip choices " << choices << " crease"
               << (creases.contradicted.size() > 1 ? "s " : " ") << list
-              << " turn past the fully folded state (+-180 deg) before fraction " << format_number(o.fraction)
+              << " turn past the fully folded state (+-180 deg) before fraction " << format_human(o.fraction)
               << " of the motion: their panels pass through each other and their fold angles would contradict their "
                  "mountain/valley assignment. Nothing written. The motion is consistent up to fraction "
-              << format_number(good) << " (--fraction " << format_number(std::floor(good * 1000.0) / 1000.0)
+              << format_human(good) << " (--fraction " << format_human(std::floor(good * 1000.0) / 1000.0)
               << "); other --fold choices may fold further.\n";
   context.exit_code = static_cast<int>(ExitCode::check_failed);
 }
@@ -151,17 +151,17 @@ void add_develop_command(CLI::App& app, Context& context) {
     if (!o->json) {
       context.out << "developed pattern \"" << pattern.input().name << "\": " << pattern.strips() << " strips, "
                   << pattern.columns() << " vertices a profile, case (" << to_string(pattern.motion_case())
-                  << "), flat at t* = " << format_number(pattern.t_star()) << '\n';
+                  << "), flat at t* = " << format_human(pattern.t_star()) << '\n';
       for (const FlexDirection& f : directions) {
         context.out << (f.direction > 0 ? "t increasing: " : "t decreasing: ")
-                    << (f.folds ? "folds, until t = " + format_number(f.reach) +
+                    << (f.folds ? "folds, until t = " + format_human(f.reach) +
                                       (f.flat_at_reach ? " where it is flat again (flat-foldable)" : "")
                                 : "no flex: " + f.reason)
                     << '\n';
         if (!f.expansion.empty()) {
           context.out << "  non-expansion <v(P)-v(Q), P-Q> per strip (<= 0 folds):";
           for (std::size_t i = 0; i < f.expansion.size(); ++i) {
-            context.out << ' ' << format_number(f.expansion[i]) << (f.strip_folds[i] ? "" : "(!)");
+            context.out << ' ' << format_human(f.expansion[i]) << (f.strip_folds[i] ? "" : "(!)");
           }
           context.out << '\n';
         }
@@ -218,7 +218,7 @@ void add_develop_command(CLI::App& app, Context& context) {
     context.out << "every one of the 2^" << pattern.strips() << " choices of the strips folds that way (--fold picks one)\n"
                 << "folding " << (chosen->direction > 0 ? "up" : "down") << " with strip choices "
                 << report["fold"].get<std::string>() << ": " << creases.mountains << " mountain and " << creases.valleys
-                << " valley creases; the written state is t = " << format_number(t) << '\n';
+                << " valley creases; the written state is t = " << format_human(t) << '\n';
     for (const std::string& path : o->outputs) context.out << "wrote " << path << '\n';
   });
 }

@@ -43,11 +43,11 @@ std::optional<std::pair<double, double>> free_range(Context& context, const Self
   const std::pair<double, double> range = intersection_free_interval(report);
   if (!(range.second > range.first)) {
     throw InvalidInputError("--no-self-intersection", "the intersection-free interval is the single configuration t = " +
-                                                          format_number(range.first));
+                                                          format_human(range.first));
   }
-  context.out << "intersection-free interval [" << format_number(range.first) << ", " << format_number(range.second)
-              << "] of the flexion interval [" << format_number(report.t_lambda) << ", "
-              << format_number(report.t_mu) << "]\n";
+  context.out << "intersection-free interval [" << format_human(range.first) << ", " << format_human(range.second)
+              << "] of the flexion interval [" << format_human(report.t_lambda) << ", "
+              << format_human(report.t_mu) << "]\n";
   return range;
 }
 
@@ -101,7 +101,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
               << (o.nodes ? " panels (one node each, hinge tree " + std::to_string(report.tree_depth) + " levels deep)"
                           : std::string(" panels (one mesh, morph targets)"));
   if (o.static_t) {
-    context.out << ", static at t = " << format_number(*o.static_t) << '\n';
+    context.out << ", static at t = " << format_human(*o.static_t) << '\n';
     return;
   }
   const char* back = o.ping_pong ? ", and back" : "";
@@ -109,31 +109,31 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
     const PHedron::ConfigurationCycle c = design.assembly.base().configuration_cycle();
     context.out << ", " << report.keyframes << " keyframes along the configuration curve (" << c.passes.size()
                 << " passes through the flexion limits, " << (c.closed ? "closed" : "open: " + c.stop) << "), "
-                << format_number(o.seconds) << " s a full traversal of the interval" << back << '\n';
+                << format_human(o.seconds) << " s a full traversal of the interval" << back << '\n';
   } else {
     const FlexionInterval& f = design.assembly.flexion_interval();
-    context.out << ", " << report.keyframes << " keyframes over [" << format_number(range ? range->first : f.lower.t)
-                << ", " << format_number(range ? range->second : f.upper.t) << "] in " << format_number(o.seconds)
+    context.out << ", " << report.keyframes << " keyframes over [" << format_human(range ? range->first : f.lower.t)
+                << ", " << format_human(range ? range->second : f.upper.t) << "] in " << format_human(o.seconds)
                 << " s" << back << '\n';
   }
-  context.out << "largest vertex error between keyframes: " << format_number(report.max_vertex_error) << " ("
-              << format_number(report.max_vertex_error / report.model_size) << " of the model size, at t = "
-              << format_number(report.vertex_error_t) << "; tolerance " << format_number(o.hinge_tolerance)
+  context.out << "largest vertex error between keyframes: " << format_human(report.max_vertex_error) << " ("
+              << format_human(report.max_vertex_error / report.model_size) << " of the model size, at t = "
+              << format_human(report.vertex_error_t) << "; tolerance " << format_human(o.hinge_tolerance)
               << ", measured at 15 points between every two keyframes)\n";
   if (report.narrow_vertex_error > report.tolerance) {
-    context.out << "next to the flexion limits, within " << format_number(report.narrow_seconds * 1000.0)
+    context.out << "next to the flexion limits, within " << format_human(report.narrow_seconds * 1000.0)
                 << " ms of the animation in all (keyframes no closer than 0.02 frame at 24 fps; the motion moves as "
                    "the square root of the distance to a limit): up to "
-                << format_number(report.narrow_vertex_error / report.model_size) << " of the model size\n";
+                << format_human(report.narrow_vertex_error / report.model_size) << " of the model size\n";
   }
   if (o.nodes) {
-    context.out << "largest hinge opening between keyframes: " << format_number(report.max_opening) << " ("
-                << format_number(report.max_opening / report.model_size) << " of the model size)\n";
+    context.out << "largest hinge opening between keyframes: " << format_human(report.max_opening) << " ("
+                << format_human(report.max_opening / report.model_size) << " of the model size)\n";
   }
   const double worst = std::max(report.max_vertex_error, report.max_opening);
   if (worst > report.tolerance) {
-    context.err << "phedra: warning: between keyframes the file is " << format_number(worst / report.model_size)
-                << " of the model size from the exact motion, more than the tolerance " << format_number(o.hinge_tolerance)
+    context.err << "phedra: warning: between keyframes the file is " << format_human(worst / report.model_size)
+                << " of the model size from the exact motion, more than the tolerance " << format_human(o.hinge_tolerance)
                 << (o.nodes ? ": the keyframes are capped; a larger --tolerance keeps it"
                             : ": the morph targets are capped at 250; --nodes (small models) or a larger --tolerance "
                               "keeps it")
@@ -216,7 +216,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       emit(mesh_text(design, t, format == Format::obj ? ".obj" : ".ply", "phedra buildability: " + buildability.summary()),
            o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\" at t = "
-                  << format_number(t) << '\n';
+                  << format_human(t) << '\n';
       return;
     }
     const std::vector<double> ts = range ? o->parameters.values(sub, design.assembly, *range, "--no-self-intersection",
@@ -226,7 +226,7 @@ void add_generate_command(CLI::App& app, Context& context) {
     if (format == Format::fold) {
       emit(fold_json(design, ts, buildability.file_json()), o->output, o->preset, context.out);
       context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
-                  << ts.size() << " frames over [" << format_number(ts.front()) << ", " << format_number(ts.back())
+                  << ts.size() << " frames over [" << format_human(ts.front()) << ", " << format_human(ts.back())
                   << "]\n";
       return;
     }
@@ -235,7 +235,7 @@ void add_generate_command(CLI::App& app, Context& context) {
     emit(motion_json(document, ts), o->output, o->preset, context.out);
     context.out << "wrote " << o->output << ": " << design.kind << " \"" << design.assembly.name() << "\", "
                 << document.labels.size() << " vertices, " << document.faces.size() << " faces, " << ts.size()
-                << " configurations over [" << format_number(ts.front()) << ", " << format_number(ts.back()) << "]\n";
+                << " configurations over [" << format_human(ts.front()) << ", " << format_human(ts.back()) << "]\n";
   });
 }
 

@@ -132,8 +132,8 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
   }
   out << "motion parameter:  case (" << to_string(p.motion_case()) << "), t = axis coordinate of "
       << (p.motion_case() == MotionCase::a ? "S_0" : "S_1") << '\n'
-      << "t*:                " << format_number(a.t_star()) << '\n'
-      << "flexion interval:  [" << format_number(f.lower.t) << ", " << format_number(f.upper.t) << "]\n"
+      << "t*:                " << format_human(a.t_star()) << '\n'
+      << "flexion interval:  [" << format_human(f.lower.t) << ", " << format_human(f.upper.t) << "]\n"
       << "  t_lambda limit:  " << limit_cause(f.lower.strip) << '\n'
       << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n';
   {
@@ -143,17 +143,17 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
         << (c.closed ? "closed (back at t* on the input branch)" : "open: " + c.stop) << '\n';
     for (const PHedron::Pass& pass : c.passes) {
       out << "  " << (pass.switched ? "strip " + std::to_string(pass.switched) + " switches, " : std::string())
-          << "t " << format_number(pass.from) << " -> " << format_number(pass.to) << "  (" << branch_name(pass.flipped)
+          << "t " << format_human(pass.from) << " -> " << format_human(pass.to) << "  (" << branch_name(pass.flipped)
           << ")\n";
     }
   }
   out
-      << "model size:        " << format_number(size) << " (bounding-box diagonal at t*)\n"
-      << "at t*:             planarity " << format_number(at_star.planarity.value / size) << ", isometry "
-      << format_number(at_star.isometry.value / size) << ", reproduction "
-      << format_number(at_star.reproduction / size);
-  if (at_star.closed) out << ", closure " << format_number(at_star.closure.value / size);
-  if (a.member_count() > 1) out << ", shared mismatch " << format_number(at_star.shared.value / size);
+      << "model size:        " << format_human(size) << " (bounding-box diagonal at t*)\n"
+      << "at t*:             planarity " << format_human(at_star.planarity.value / size) << ", isometry "
+      << format_human(at_star.isometry.value / size) << ", reproduction "
+      << format_human(at_star.reproduction / size);
+  if (at_star.closed) out << ", closure " << format_human(at_star.closure.value / size);
+  if (a.member_count() > 1) out << ", shared mismatch " << format_human(at_star.shared.value / size);
   out << " (relative to the model size)\n";
   if (!at_star.warning.empty()) out << "warning:           " << at_star.warning << '\n';
 }

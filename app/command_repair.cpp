@@ -28,6 +28,15 @@ std::string percent(double fraction) { return format_short(100.0 * fraction) + "
 
 /// `preset` written with the keys in the order the input file has them (a
 /// reference case's preset object when the file is one).
+/// A field's value for people: numbers with 6 significant digits (or --full-precision), lists in brackets.
+std::string human_value(const nlohmann::json& value) {
+  if (value.is_number()) return format_human(value.get<double>());
+  if (!value.is_array()) return value.dump();
+  std::string out = "[";
+  for (std::size_t k = 0; k < value.size(); ++k) out += (k ? ", " : "") + human_value(value[k]);
+  return out + "]";
+}
+
 std::string preset_text(const nlohmann::json& preset, const std::string& input_path) {
   nlohmann::ordered_json document = nlohmann::ordered_json::parse(read_text_file(input_path));
   if (document.is_object() && document.contains("preset") && !document.contains("trajectory")) {
@@ -127,7 +136,7 @@ void add_repair_command(CLI::App& app, Context& context) {
         out << "changed " << r.changes.size() << " field" << (r.changes.size() == 1 ? "" : "s") << ", distance "
             << format_short(r.distance) << " (relative to the model size, docs/design.md):\n";
         for (const FieldChange& c : r.changes) {
-          out << "  " << c.field << ": " << c.before.dump() << " -> " << c.after.dump();
+          out << "  " << c.field << ": " << human_value(c.before) << " -> " << human_value(c.after);
           if (c.field.rfind("directions", 0) == 0) {
             out << " (turned " << format_short(c.change) << " degrees)\n";
           } else {

@@ -71,9 +71,10 @@ void add_view_command(CLI::App& app, Context& context) {
               "the core running in the browser (WebAssembly); prints the address and serves until interrupted");
   sub->add_option("file", o->file, "An animated .glb written by `phedra generate`, or a preset .json to design")->required();
   sub->add_option("--port", o->port, "Port on 127.0.0.1 (0: any free port)")->capture_default_str();
-  sub->add_option("--web", o->web, "The viewer's directory (web/ with its node_modules)")->capture_default_str();
-  sub->add_option("--presets", o->presets, "The presets the pages list (a directory of preset .json files)")
-      ->capture_default_str();
+  sub->add_option("--web", o->web, "The viewer's directory, web/ with its node_modules (default: web/ of the source "
+                                   "tree this binary was built from)");
+  sub->add_option("--presets", o->presets, "The presets the pages list, a directory of preset .json files (default: "
+                                           "presets/ of the source tree this binary was built from)");
   sub->add_option("--requests", o->requests, "Stop after this many requests (0: serve until interrupted)");
   sub->callback([o, &context] {
     namespace fs = std::filesystem;

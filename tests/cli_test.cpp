@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 using namespace phedra;
@@ -51,8 +52,11 @@ TEST_CASE("info prints the figures, --json has the documented keys", "[cli]") {
   const std::string preset = data + "/cases/open-all-plus.json";
   const Run text = phedra_cli({"info", preset});
   CHECK(text.code == 0);
-  CHECK_THAT(text.out, Contains("t*:                -1.2979729609766277"));
+  CHECK_THAT(text.out, Contains("t*:                -1.29797\n"));  // 6 significant digits for people
   CHECK_THAT(text.out, Contains("flexion interval:"));
+  // --full-precision: round-trip digits, as in the files.
+  const Run full = phedra_cli({"info", preset, "--full-precision"});
+  CHECK_THAT(full.out, Contains("t*:                -1.2979729609766277\n"));
   const Run j = phedra_cli({"info", preset, "--json"});
   REQUIRE(j.code == 0);
   const json info = json::parse(j.out);
@@ -63,6 +67,48 @@ TEST_CASE("info prints the figures, --json has the documented keys", "[cli]") {
   CHECK(info["faces"] == 20);
   CHECK(info["planarity"].get<double>() < 1e-9);
   CHECK(info["isometry"].get<double>() < 1e-9);
+}
+
+TEST_CASE("text output has 6 significant digits in every command, --full-precision gives round-trip digits", "[cli]") {
+  // No number in a command's text output has more than 6 significant digits.
+  const fs::path dir = scratch_directory();
+  const std::string tube = presets + "/parallelogram-tube.json";
+  const std::vector<std::vector<std::string>> commands{
+      {"info", tube},
+      {"check", tube},
+      {"intersections", tube},
+      {"metrics", tube, "--samples", "5"},
+      {"generate", tube, "-o", (dir / "p.glb").string()},
+      {"outlines", tube, "-o", (dir / "p.pdf").string()},
+      {"repair", data + "/repairable-tube.json", "-o", (dir / "r.json").string()},
+      {"develop", presets + "/developed/flat-pattern.json"},
+  };
+  // The most significant digits of any decimal number in a text (leading zeros and exponents aside).
+  auto most_digits = [](const std::string& text) {
+    std::size_t most = 0;
+    const std::regex number("[0-9]+\\.[0-9]+");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), number); it != std::sregex_iterator(); ++it) {
+      std::string digits;
+      for (char c : it->str()) {
+        if (c != '.') digits += c;
+      }
+      digits.erase(0, std::min(digits.find_first_not_of('0'), digits.size()));
+      most = std::max(most, digits.size());
+    }
+    return most;
+  };
+  for (const auto& args : commands) {
+    CAPTURE(args);
+    const Run r = phedra_cli(args);
+    CHECK(r.code == 0);
+    CHECK(most_digits(r.out + r.err) <= 6);
+    auto with_full = args;
+    with_full.push_back("--full-precision");
+    const Run f = phedra_cli(with_full);
+    CHECK(f.code == 0);
+    if (args[0] != "outlines") CHECK(most_digits(f.out) > 6);
+  }
+  fs::remove_all(dir);
 }
 
 TEST_CASE("sample: labels, faces, samples in command-line order, fractions 0 and 1 are the limits", "[cli]") {

@@ -13,7 +13,7 @@ std::string plural(std::size_t count, const std::string& word) {
   return std::to_string(count) + " " + word + (count == 1 ? "" : "s");
 }
 
-std::string interval_text(double a, double b) { return "[" + format_number(a) + ", " + format_number(b) + "]"; }
+std::string interval_text(double a, double b) { return "[" + format_human(a) + ", " + format_human(b) + "]"; }
 
 /// An anti-parallelogram tube: a closed member with '-' signs (MATH.md section 6).
 bool self_crossing_kind(const Assembly& a, std::size_t m) {
@@ -161,8 +161,8 @@ std::ostream& operator<<(std::ostream& out, const BuildabilityReport& r) {
     out << "  ... and " << r.invalid.size() - detail << " more (--json lists every panel with its cause)\n";
   }
   if (r.swept && !r.motion.at_t_star) {
-    if (r.motion.lower) out << "  below t = " << format_number(r.motion.lower->t) << ": " << describe(*r.motion.lower, several) << '\n';
-    if (r.motion.upper) out << "  above t = " << format_number(r.motion.upper->t) << ": " << describe(*r.motion.upper, several) << '\n';
+    if (r.motion.lower) out << "  below t = " << format_human(r.motion.lower->t) << ": " << describe(*r.motion.lower, several) << '\n';
+    if (r.motion.upper) out << "  above t = " << format_human(r.motion.upper->t) << ": " << describe(*r.motion.upper, several) << '\n';
     if (r.motion.lower_contact) out << "  at t_lambda the panels touch (allowed at a flexion limit): " << describe(*r.motion.lower_contact, several, true) << '\n';
     if (r.motion.upper_contact) out << "  at t_mu the panels touch (allowed at a flexion limit): " << describe(*r.motion.upper_contact, several, true) << '\n';
   }

@@ -368,21 +368,21 @@ std::string MetricsReport::to_svg() const {
 }
 
 std::ostream& operator<<(std::ostream& out, const MetricsReport& r) {
-  out << "metamaterial figures of \"" << r.name << "\" (" << r.kind << ") over [" << format_number(r.t_lambda) << ", "
-      << format_number(r.t_mu) << "], " << r.samples.size() << " samples\n";
+  out << "metamaterial figures of \"" << r.name << "\" (" << r.kind << ") over [" << format_human(r.t_lambda) << ", "
+      << format_human(r.t_mu) << "], " << r.samples.size() << " samples\n";
   for (int k = 0; k < 3; ++k) {
-    out << "direction " << k + 1 << ": (" << format_number(r.directions[k].x()) << ", "
-        << format_number(r.directions[k].y()) << ", " << format_number(r.directions[k].z()) << "), extent at t* "
-        << format_number(r.at_t_star.extent[k]) << ", deployment ratio (largest / smallest) "
-        << format_number(r.extent_deployment[k]) << '\n';
+    out << "direction " << k + 1 << ": (" << format_human(r.directions[k].x()) << ", "
+        << format_human(r.directions[k].y()) << ", " << format_human(r.directions[k].z()) << "), extent at t* "
+        << format_human(r.at_t_star.extent[k]) << ", deployment ratio (largest / smallest) "
+        << format_human(r.extent_deployment[k]) << '\n';
   }
   if (r.at_t_star.volume) {
-    out << "enclosed volume at t*: " << format_number(*r.at_t_star.volume) << ", deployment ratio "
-        << (r.volume_deployment ? format_number(*r.volume_deployment) : std::string("-")) << '\n';
+    out << "enclosed volume at t*: " << format_human(*r.at_t_star.volume) << ", deployment ratio "
+        << (r.volume_deployment ? format_human(*r.volume_deployment) : std::string("-")) << '\n';
   } else {
     out << "enclosed volume: none (no tube)\n";
   }
-  auto p = [](const std::optional<double>& v) { return v ? format_number(*v) : std::string("undefined"); };
+  auto p = [](const std::optional<double>& v) { return v ? format_human(*v) : std::string("undefined"); };
   out << "Poisson's ratios at t*: nu_12 " << p(r.at_t_star.poisson[0]) << ", nu_13 " << p(r.at_t_star.poisson[1])
       << ", nu_23 " << p(r.at_t_star.poisson[2]) << '\n';
   return out;

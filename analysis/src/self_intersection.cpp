@@ -605,17 +605,17 @@ nlohmann::json SelfIntersectionReport::to_json() const {
 std::ostream& operator<<(std::ostream& out, const SelfIntersectionReport& r) {
   out << "self-intersection of \"" << r.name << "\": " << r.panels << " panels, " << r.hinges << " hinges, "
       << r.samples << " samples from t* to each limit\n";
-  out << "flexion interval [" << format_number(r.t_lambda) << ", " << format_number(r.t_mu)
-      << "], t* = " << format_number(r.t_star) << '\n';
+  out << "flexion interval [" << format_human(r.t_lambda) << ", " << format_human(r.t_mu)
+      << "], t* = " << format_human(r.t_star) << '\n';
   const bool several = r.members > 1;
   if (r.at_t_star) {
     out << "the configuration at t* intersects itself: " << describe_collision(*r.at_t_star, several, false) << '\n';
   } else if (r.intersection_free()) {
     out << "intersection-free over the whole flexion interval\n";
   } else {
-    out << "intersection-free on [" << format_number(r.free_lower) << ", " << format_number(r.free_upper) << "]\n";
-    if (r.lower) out << "  below " << format_number(r.lower->t) << ": " << describe_collision(*r.lower, several, false) << '\n';
-    if (r.upper) out << "  above " << format_number(r.upper->t) << ": " << describe_collision(*r.upper, several, false) << '\n';
+    out << "intersection-free on [" << format_human(r.free_lower) << ", " << format_human(r.free_upper) << "]\n";
+    if (r.lower) out << "  below " << format_human(r.lower->t) << ": " << describe_collision(*r.lower, several, false) << '\n';
+    if (r.upper) out << "  above " << format_human(r.upper->t) << ": " << describe_collision(*r.upper, several, false) << '\n';
   }
   if (r.lower_contact) out << "  at t_lambda: " << describe_collision(*r.lower_contact, several, true) << '\n';
   if (r.upper_contact) out << "  at t_mu: " << describe_collision(*r.upper_contact, several, true) << '\n';

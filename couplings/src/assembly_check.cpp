@@ -120,8 +120,8 @@ nlohmann::json AssemblyCheckReport::to_json() const {
 
 std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
   out << "geometry " << (r.passed() ? "PASS" : "FAIL") << ": " << r.name << ", " << r.members << (r.members == 1 ? " member" : " members")
-      << ", " << r.samples << " configurations over [" << format_number(r.t_lambda) << ", " << format_number(r.t_mu)
-      << "], tolerance " << format_number(r.tolerance) << " (model size " << format_number(r.model_size) << ")\n";
+      << ", " << r.samples << " configurations over [" << format_human(r.t_lambda) << ", " << format_human(r.t_mu)
+      << "], tolerance " << format_human(r.tolerance) << " (model size " << format_human(r.model_size) << ")\n";
   if (r.shape_checked) {
     print_worst_case(out, "planarity       ", r.planarity, r.model_size);
     print_worst_case(out, "isometry        ", r.isometry, r.model_size);
@@ -133,7 +133,7 @@ std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
     out << "  shared vertices: " << r.shared_groups << " groups\n";
     print_worst_case(out, "shared mismatch ", r.shared, r.model_size);
   }
-  out << "  reproduction    " << format_number(r.reproduction) << " (evaluate(t*) against the constructed nets)\n";
+  out << "  reproduction    " << format_human(r.reproduction) << " (evaluate(t*) against the constructed nets)\n";
   if (!r.warning.empty()) out << "  warning: " << r.warning << '\n';
   return out;
 }

@@ -244,7 +244,7 @@ std::vector<FlexDirection> DevelopedPattern::flex_directions() const {
       if (!moves && f.folds) {
         f.folds = false;
         f.reason = "strip " + std::to_string(i) + " would have to stretch: its trajectory edge expands (" +
-                   format_number(worst) + ")";
+                   format_human(worst) + ")";
       }
     }
     if (f.folds) {
@@ -275,7 +275,7 @@ std::vector<FlexDirection> DevelopedPattern::flex_directions() const {
 
 ControlPolylines DevelopedPattern::folded_preset(double t, const std::vector<int>& fold) const {
   const std::optional<Points> x = folded(t, fold);
-  if (!x) throw InvalidInputError("--at", "the pattern cannot fold to t = " + format_number(t));
+  if (!x) throw InvalidInputError("--at", "the pattern cannot fold to t = " + format_human(t));
   const auto s = apex_heights(t);
   ControlPolylines c;
   c.name = input_.name + " (folded)";

@@ -69,8 +69,8 @@ nlohmann::json worst_case_json(const WorstCase& w, double size) {
 }
 
 void print_worst_case(std::ostream& out, const char* name, const WorstCase& w, double size) {
-  out << "  " << name << format_number(w.value) << " (" << format_number(w.value / size)
-      << " of the model size) at t = " << format_number(w.t) << (w.location.empty() ? "" : ", " + w.location) << '\n';
+  out << "  " << name << format_human(w.value) << " (" << format_human(w.value / size)
+      << " of the model size) at t = " << format_human(w.t) << (w.location.empty() ? "" : ", " + w.location) << '\n';
 }
 
 bool IntervalCheckReport::passed() const {
@@ -93,13 +93,13 @@ nlohmann::json IntervalCheckReport::to_json() const {
 }
 
 std::ostream& operator<<(std::ostream& out, const IntervalCheckReport& r) {
-  out << (r.passed() ? "PASS" : "FAIL") << ": " << r.samples << " configurations over [" << format_number(r.t_lambda)
-      << ", " << format_number(r.t_mu) << "], tolerance " << format_number(r.tolerance) << " (model size "
-      << format_number(r.model_size) << ")\n";
+  out << (r.passed() ? "PASS" : "FAIL") << ": " << r.samples << " configurations over [" << format_human(r.t_lambda)
+      << ", " << format_human(r.t_mu) << "], tolerance " << format_human(r.tolerance) << " (model size "
+      << format_human(r.model_size) << ")\n";
   print_worst_case(out, "planarity    ", r.planarity, r.model_size);
   print_worst_case(out, "isometry     ", r.isometry, r.model_size);
   if (r.closed) print_worst_case(out, "closure gap  ", r.closure, r.model_size);
-  out << "  reproduction " << format_number(r.reproduction) << " (evaluate(t*) against the constructed net)\n";
+  out << "  reproduction " << format_human(r.reproduction) << " (evaluate(t*) against the constructed net)\n";
   return out;
 }
 
