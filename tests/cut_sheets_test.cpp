@@ -257,6 +257,18 @@ TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs opt
   CHECK(g.pieces.size() < panel_mesh(grid).faces.size() / 3);
 }
 
+TEST_CASE("cut sheets of the tubes and the grid on A4: every label readable (at least 1.2 mm high)", "[outlines]") {
+  for (const char* name : {"parallelogram-tube", "helix-tube", "grid-3x3", "default"}) {
+    CAPTURE(name);
+    const CutSheets s = cut_sheets(load_design(presets + "/" + name + ".json"), {});
+    CHECK(s.smallest_label >= readable_label_mm);
+    CHECK(s.untabbed_seams == 0);
+    for (const Piece& piece : s.pieces) {
+      for (const SheetText& t : piece.labels) CHECK(t.box.height >= readable_label_mm);
+    }
+  }
+}
+
 TEST_CASE("cut sheets render as PDF pages, SVG and PNG files and DXF", "[outlines][cli]") {
   const fs::path dir = fs::temp_directory_path() / ("phedra-sheets-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);

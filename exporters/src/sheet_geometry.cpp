@@ -72,9 +72,12 @@ bool inside(const Polygon2& polygon, const Vec2& point, double margin) {
         point.x() < (b.x() - a.x()) * (point.y() - a.y()) / (b.y() - a.y()) + a.x()) {
       in = !in;
     }
-    if (distance_to_segment(point, a, b) < margin) return false;
   }
-  return in;
+  if (!in || margin <= 0.0) return in;
+  for (std::size_t k = 0, j = polygon.size() - 1; k < polygon.size(); j = k++) {
+    if (distance_to_segment(point, polygon[k], polygon[j]) < margin) return false;
+  }
+  return true;
 }
 
 Polygon2 Box2::corners() const {

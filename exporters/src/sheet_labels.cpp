@@ -41,7 +41,8 @@ std::pair<Vec2, Vec2> centre_and_axis(const Polygon2& outline) {
   return {centre, axis};
 }
 
-/// The label box of capital height h: centred on `centre` along `axis`, or along edge `edge`.
+/// The label box of capital height h: centred on `centre` along `axis`, or along
+/// edge `edge`, centred on `centre` (a point of the edge).
 Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double width_per_height, double h,
                const Vec2& centre, const Vec2& centre_axis) {
   const double w = width_per_height * h;
@@ -53,8 +54,7 @@ Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double 
   Vec2 axis = b - a;
   axis = axis.squaredNorm() > 0.0 ? Vec2(axis.normalized()) : Vec2::UnitX();
   const Vec2 inward(-axis.y(), axis.x());  // counter-clockwise outline: inside on the left
-  const Vec2 mid = 0.5 * (a + b);
-  return Box2{mid - 0.5 * w * axis + 0.3 * h * inward, axis, w, h};
+  return Box2{centre - 0.5 * w * axis + 0.3 * h * inward, axis, w, h};
 }
 
 }  // namespace
@@ -69,23 +69,41 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
                               double max_height, const std::vector<Box2>& avoid) {
   const double ratio = text_width(text, 1.0);
   const auto [centroid, axis] = centre_and_axis(outline);
+  auto fits = [&](const Vec2& centre, double h) {
+    const Box2 box = label_box(outline, edge, ratio, h, centre, axis);
+    return box_inside(outline, box, 0.15 * h) && clear_of(box, avoid, 0.15 * h);
+  };
   // The largest height that fits at one centre (bisection), 0 when nothing does.
   auto largest = [&](const Vec2& centre) {
-    auto ok = [&](double h) {
-      const Box2 box = label_box(outline, edge, ratio, h, centre, axis);
-      return box_inside(outline, box, 0.15 * h) && clear_of(box, avoid, 0.15 * h);
-    };
+    auto ok = [&](double h) { return fits(centre, h); };
     if (ok(max_height)) return max_height;
     double lo = 0.0, hi = max_height;
-    for (int i = 0; i < 30; ++i) {
+    for (int i = 0; i < 14; ++i) {  // to max_height / 16384: finer than print
       const double mid = 0.5 * (lo + hi);
       (ok(mid) ? lo : hi) = mid;
     }
     return lo >= smallest_mm && ok(lo) ? lo : 0.0;
   };
+  if (edge) {
+    // Along the seam: its middle first, then towards either end (a slim panel is wider at one).
+    const Vec2 a = outline[*edge], b = outline[(*edge + 1) % outline.size()];
+    Vec2 best_centre = 0.5 * (a + b);
+    double best = largest(best_centre);
+    if (best < 0.7 * max_height) {
+      // (Only when squeezed: a label off the middle takes room the panel's own label may need.)
+      for (double f : {0.35, 0.65, 0.2, 0.8}) {
+        const Vec2 c = a + f * (b - a);
+        if (!fits(c, 1.15 * best)) continue;  // cannot beat the middle
+        const double h = largest(c);
+        if (h > 1.15 * best) best = h, best_centre = c;
+      }
+    }
+    if (best <= 0.0) return std::nullopt;
+    return label_box(outline, edge, ratio, best, best_centre, axis);
+  }
   Vec2 best_centre = centroid;
   double best = largest(centroid);
-  if (!edge && best < max_height) {
+  if (best < max_height) {
     // A panel label squeezed at the centroid (by seam labels, or a slim panel): try a grid of centres.
     const Vec2 up(-axis.y(), axis.x());
     double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
@@ -93,10 +111,10 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
       s0 = std::min(s0, (p - centroid).dot(axis)), s1 = std::max(s1, (p - centroid).dot(axis));
       t0 = std::min(t0, (p - centroid).dot(up)), t1 = std::max(t1, (p - centroid).dot(up));
     }
-    for (int i = 1; i < 8; ++i) {
-      for (int j = 1; j < 8; ++j) {
-        const Vec2 c = centroid + (s0 + (s1 - s0) * i / 8.0) * axis + (t0 + (t1 - t0) * j / 8.0) * up;
-        if (!inside(outline, c)) continue;
+    for (int i = 1; i < 6; ++i) {
+      for (int j = 1; j < 6; ++j) {
+        const Vec2 c = centroid + (s0 + (s1 - s0) * i / 6.0) * axis + (t0 + (t1 - t0) * j / 6.0) * up;
+        if (!inside(outline, c) || !fits(c, std::min(1.05 * best, max_height))) continue;  // cannot beat the best
         const double h = largest(c);
         if (h > 1.05 * best) best = h, best_centre = c;
       }
@@ -106,35 +124,67 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
   return label_box(outline, edge, ratio, best, best_centre, axis);
 }
 
+namespace {
+
+/// The seam labels of panel i with every label at most `cap` high: on the
+/// side's tab when it has one (`on_tab`, found once), else along the seam
+/// inside the panel.
+std::vector<SheetText> seam_labels(const Piece& piece, std::size_t i, double cap,
+                                   const std::vector<std::optional<Box2>>& on_tab, double& smallest) {
+  std::vector<SheetText> out;
+  std::vector<Box2> taken;
+  smallest = cap;
+  for (std::size_t k = 0; k < piece.seams.size(); ++k) {
+    const SeamSide& side = piece.seams[k];
+    if (side.panel != i) continue;
+    const std::string text = "S" + std::to_string(side.seam);
+    std::optional<Box2> box = on_tab[k];
+    if (!box || box->height < 0.8 * cap) {
+      auto on_panel = fit_label(piece.panels[i].outline, side.edge, text, cap, taken);
+      if (on_panel && (!box || on_panel->height > box->height)) {
+        taken.push_back(*on_panel);
+        box = on_panel;
+      }
+    }
+    smallest = std::min(smallest, box ? box->height : 0.0);
+    if (box) out.push_back(SheetText{text, *box, TextRole::seam});
+  }
+  return out;
+}
+
+}  // namespace
+
 void place_labels(Piece& piece) {
+  std::vector<std::optional<Box2>> on_tab(piece.seams.size());
+  for (std::size_t k = 0; k < piece.seams.size(); ++k) {
+    if (const auto& t = piece.seams[k].tab) {
+      // Along the seam on the tab (its corners are a, b, then outside: turned counter-clockwise).
+      on_tab[k] = fit_label(Polygon2{(*t)[1], (*t)[0], (*t)[3], (*t)[2]}, 0, "S" + std::to_string(piece.seams[k].seam),
+                            seam_label_mm, {});
+    }
+  }
   for (std::size_t i = 0; i < piece.panels.size(); ++i) {
     const PiecePanel& panel = piece.panels[i];
-    std::vector<Box2> taken;
-    for (const SeamSide& side : piece.seams) {
-      if (side.panel != i) continue;
-      const std::string text = "S" + std::to_string(side.seam);
-      std::optional<Box2> on_tab;
-      if (side.tab) {
-        // On the tab: its own room, along the seam (the tab's corners are a, b, then outside).
-        const Polygon2& t = *side.tab;
-        on_tab = fit_label(Polygon2{t[1], t[0], t[3], t[2]}, 0, text, seam_label_mm, {});
-      }
-      auto on_panel = fit_label(panel.outline, side.edge, text, seam_label_mm, taken);
-      if (on_tab && (!on_panel || on_tab->height >= 0.8 * on_panel->height)) {
-        piece.labels.push_back(SheetText{text, *on_tab, TextRole::seam});
-        continue;
-      }
-      if (auto box = on_panel) {
-        taken.push_back(*box);
-        piece.labels.push_back(SheetText{text, *box, TextRole::seam});
-      }
-    }
-    const std::string text = "P" + std::to_string(panel.panel);
+    const std::string name = "P" + std::to_string(panel.panel);
     // A panel that is not a simple polygon (red, not to be cut) is named inside its convex hull.
     const Polygon2 region = piece.cuttable ? panel.outline : convex_hull(panel.outline);
-    if (auto box = fit_label(region, std::nullopt, text, panel_label_mm, taken)) {
-      piece.labels.push_back(SheetText{text, *box, TextRole::panel});
+    // The labels sharing a slim panel: one cap for its seam labels, the one that
+    // makes the smallest of all its labels (its name too) largest; the first
+    // label placed would otherwise take the room of the others.
+    double best_smallest = -1.0;
+    std::vector<SheetText> best;
+    for (double cap : {seam_label_mm, 2.4, 1.9, 1.5, 1.2, 0.9, 0.6}) {
+      double smallest = 0.0;
+      std::vector<SheetText> labels = seam_labels(piece, i, cap, on_tab, smallest);
+      std::vector<Box2> taken;
+      for (const SheetText& label : labels) taken.push_back(label.box);
+      const auto box = fit_label(region, std::nullopt, name, panel_label_mm, taken);
+      if (box) labels.push_back(SheetText{name, *box, TextRole::panel});
+      smallest = std::min(smallest, box ? box->height : 0.0);
+      if (smallest > best_smallest + 1e-9) best_smallest = smallest, best = std::move(labels);
+      if (smallest >= cap - 1e-9) break;  // every label at least the cap: a lower cap cannot do better
     }
+    for (SheetText& label : best) piece.labels.push_back(std::move(label));
   }
 }
 

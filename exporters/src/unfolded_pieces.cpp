@@ -155,7 +155,8 @@ class Unfolder {
     switch (options_.mode) {
       case PieceMode::strips: return f.row == g.row;  // a row of an array crosses its members
       case PieceMode::columns: return f.member == g.member && f.column == g.column;
-      case PieceMode::cells: return f.member == g.member;
+      // A cell: its strips, hung from a spine of the first column (a comb, as papercraft unfolders lay out tubes).
+      case PieceMode::cells: return f.member == g.member && (f.row == g.row || (f.column == 0 && g.column == 0));
       case PieceMode::panels: return false;
     }
     return false;
@@ -230,8 +231,8 @@ class Unfolder {
       const std::size_t f = stack.back();
       stack.pop_back();
       const auto next = neighbours(f);
-      for (auto it = next.rbegin(); it != next.rend(); ++it) {
-        const auto& [s, t] = *it;
+      std::vector<std::size_t> placed_now;  // best first; explored best first too (pushed last)
+      for (const auto& [s, t] : next) {
         if (piece_of_[t.face] != none || joined_.count({s.face, s.edge})) continue;
         // g's corners t.edge + 1 and t.edge are f's corners s.edge and s.edge + 1.
         const Face& g = mesh_.faces[t.face];
@@ -244,8 +245,9 @@ class Unfolder {
         tree_.push_back({s, t});
         joined_.insert({s.face, s.edge});
         joined_.insert({t.face, t.edge});
-        stack.push_back(t.face);
+        placed_now.push_back(t.face);
       }
+      stack.insert(stack.end(), placed_now.rbegin(), placed_now.rend());
     }
     pieces_.push_back(std::move(piece));
   }
@@ -316,10 +318,31 @@ class Unfolder {
     }
     seams = seam_of.size();
     if (!options_.tabs) return;
+    // The tab goes on the side that leaves the seam's smallest label largest: a
+    // tab carries its side's label, the other sides carry theirs inside their panel.
     for (const auto& sides : sides_of) {
+      auto label = [](const Polygon2& region, std::size_t edge, const SeamSide& side) {
+        const auto box = fit_label(region, edge, "S" + std::to_string(side.seam), 3.0, {});
+        return box ? box->height : 0.0;
+      };
+      std::vector<double> room;
       for (const auto& [p, s] : sides) {
-        if (add_tab(pieces_[p], pieces_[p].seams[s])) break;
+        const SeamSide& side = pieces_[p].seams[s];
+        room.push_back(side.on_fold ? 3.0 : label(pieces_[p].panels[side.panel].outline, side.edge, side));
       }
+      std::optional<std::size_t> best;
+      SeamSide best_side;
+      double best_score = -1.0;
+      for (std::size_t k = 0; k < sides.size(); ++k) {
+        const auto& [p, s] = sides[k];
+        SeamSide trial = pieces_[p].seams[s];
+        if (!add_tab(pieces_[p], trial)) continue;
+        const Polygon2& t = *trial.tab;
+        double score = std::max(room[k], label(Polygon2{t[1], t[0], t[3], t[2]}, 0, trial));
+        for (std::size_t j = 0; j < sides.size(); ++j) score = j == k ? score : std::min(score, room[j]);
+        if (score > best_score + 1e-9) best = k, best_side = trial, best_score = score;
+      }
+      if (best) pieces_[sides[*best].first].seams[sides[*best].second] = best_side;
     }
   }
 
