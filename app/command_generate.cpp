@@ -72,8 +72,10 @@ Format format_of(const std::string& path) {
 }
 
 void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary,
-                const std::optional<std::pair<double, double>>& range, const BuildabilityReport& buildability) {
+                const std::optional<std::pair<double, double>>& range, const BuildabilityReport& buildability,
+                const nlohmann::json& preset) {
   GltfOptions options;
+  options.preset_text = preset.dump();
   options.buildability = buildability.file_json();
   options.range = range;
   options.binary = binary;
@@ -183,7 +185,8 @@ void add_generate_command(CLI::App& app, Context& context) {
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {
     const Format format = format_of(o->output);
-    const Design design = load(context, o->preset);
+    const LoadedDesign loaded = load_with_preset(context, o->preset);
+    const Design& design = loaded.design;
     if (o->cycle && format != Format::glb && format != Format::gltf) {
       throw InvalidInputError("--cycle", "the configuration curve is exported as glTF (.glb, .gltf) only");
     }
@@ -204,7 +207,7 @@ void add_generate_command(CLI::App& app, Context& context) {
       } else {
         warn(range ? range->first : interval.lower.t, range ? range->second : interval.upper.t);
       }
-      write_gltf(context, design, *o, format == Format::glb, range, buildability);
+      write_gltf(context, design, *o, format == Format::glb, range, buildability, loaded.preset);
       return;
     }
     if (format == Format::obj || format == Format::ply) {

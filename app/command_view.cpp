@@ -52,9 +52,11 @@ void serve_presets(StaticServer& server, const std::filesystem::path& dir) {
                      {"description", document.is_object() ? document.value("description", "") : ""}});
     server.add_file("/presets/" + path.filename().string(), path);
     server.add_generated("/presets/" + stem + ".glb", [path] {
-      const Design design = load_design(path);
+      const nlohmann::json document = parse_json_text(read_text_file(path));
+      const Design design = design_from_json(document);
       GltfOptions options;
       options.buildability = assess_for_output(design).file_json();
+      options.preset_text = preset_object(document).dump();
       return gltf_bytes(design, options);
     }, "model/gltf-binary");
   }

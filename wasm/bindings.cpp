@@ -373,6 +373,7 @@ class Designer {
       options.morph = morph;
       options.cycle = cycle;
       options.buildability = file_buildability();
+      options.preset_text = document_.dump();
       glb_ = gltf_bytes(*design_, options);
     } catch (const Error& e) {
       return failure("", e.what());

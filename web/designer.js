@@ -1080,15 +1080,40 @@ function openPreset(text, name) {
     showMessage();
   }
 }
+/// The preset a .glb of phedra carries (extras.phedra.preset in its JSON chunk), or null.
+function presetInGlb(bytes) {
+  const view = new DataView(bytes);
+  if (bytes.byteLength < 20 || view.getUint32(0, true) !== 0x46546c67) return null;  // 'glTF'
+  const length = view.getUint32(12, true);
+  const json = JSON.parse(new TextDecoder().decode(new Uint8Array(bytes, 20, length)));
+  return json.asset?.extras?.phedra?.preset ?? null;
+}
+/// A preset (.json), or the preset inside a .glb phedra wrote.
+async function openFile(file) {
+  if (!/\.(glb)$/i.test(file.name)) {
+    openPreset(await file.text(), file.name);
+    return;
+  }
+  let text = null;
+  try {
+    text = presetInGlb(await file.arrayBuffer());
+  } catch { /* not a readable .glb: said below */ }
+  if (text) {
+    openPreset(text, file.name.replace(/\.glb$/i, '.json'));
+  } else {
+    failure = { field: '', message: `${file.name} carries no preset (not written by phedra, or by an older one): view it with phedra view ${file.name}` };
+    showMessage();
+  }
+}
 $('load').addEventListener('change', async (e) => {
   const file = e.target.files[0];
-  if (file) openPreset(await file.text(), file.name);
+  if (file) openFile(file);
 });
 window.addEventListener('dragover', (e) => e.preventDefault());
 window.addEventListener('drop', async (e) => {
   e.preventDefault();
   const file = e.dataTransfer.files[0];
-  if (file) openPreset(await file.text(), file.name);
+  if (file) openFile(file);
 });
 // The shipped presets, as `phedra view` serves them.
 fetch('/presets/index.json').then((r) => (r.ok ? r.json() : [])).then((list) => {
@@ -1151,7 +1176,25 @@ function frame() {
   requestAnimationFrame(frame);
 }
 
-const initial = await (await fetch('/preset.json')).json();
+/// The preset to start with: one the viewer handed over ("Edit in designer", a
+/// dropped .json), else the one `phedra view PRESET` serves, else the default.
+async function initialPreset() {
+  const handed = sessionStorage.getItem('phedra-open-preset');
+  if (handed) {
+    sessionStorage.removeItem('phedra-open-preset');
+    try {
+      return JSON.parse(handed);
+    } catch (error) {
+      failure = { field: '', message: `the preset handed over is not JSON: ${error.message}` };
+    }
+  }
+  for (const url of ['/preset.json', '/presets/default.json']) {
+    const response = await fetch(url);
+    if (response.ok) return response.json();
+  }
+  return {};
+}
+const initial = await initialPreset();
 loadedName = initial.name ?? null;
 if (!apply(initial, { record: false })) {
   $('message').textContent = `the preset is refused: ${failure.field}: ${failure.message}`;

@@ -152,6 +152,44 @@ function step(sign) {
   if (k >= 0) show(times[k]);
 }
 
+function download(name, data, type) {
+  const link = document.createElement('a');
+  link.download = name;
+  link.href = URL.createObjectURL(new Blob([data], { type }));
+  link.click();
+  setTimeout(() => URL.revokeObjectURL(link.href), 1000);
+}
+
+/// What the designer exports, from the preset the file carries (extras.phedra.preset).
+const presetActions = ['save-preset', 'export-fold', 'edit'];
+function savePreset() {
+  download(`${info.name ?? 'phedra'}.json`, `${JSON.stringify(JSON.parse(info.preset), null, 2)}\n`, 'application/json');
+}
+async function exportFold() {
+  // The FOLD comes from the core compiled to WebAssembly: the same code as `phedra generate X.fold`.
+  let createPhedra;
+  try {
+    createPhedra = (await import('./wasm/phedra.mjs')).default;
+  } catch {
+    $('message').textContent = 'FOLD needs the browser core: run `bash scripts/build-wasm.sh`, then reload';
+    return;
+  }
+  const core = await createPhedra();
+  const designer = new core.Designer();
+  const loaded = designer.load(info.preset);
+  if (!loaded.ok) {
+    $('message').textContent = `the preset in this file does not load: ${loaded.error}`;
+    return;
+  }
+  download(`${info.name ?? 'phedra'}.fold`, designer.fold(41), 'application/json');
+  designer.delete();
+}
+/// Hands a preset to the designer page (same origin) and opens it there.
+function openInDesigner(text) {
+  sessionStorage.setItem('phedra-open-preset', text);
+  location.href = '/designer.html';
+}
+
 function savePicture() {
   renderer.render(scene, camera);
   const link = document.createElement('a');
@@ -229,6 +267,8 @@ function showModel(loaded) {
     $('buildability').textContent = readableNumbers(b.summary) + (outlines.invalid ? ' (invalid panels in red)' : '');
     $('buildability').style.color = b.buildable ? '#a5d6a7' : '#ffcc80';
   }
+  for (const id of presetActions) $(id).disabled = !info.preset;
+  $('preset-actions').title = info.preset ? '' : 'this file carries no preset (written by an older phedra)';
   const panels = info.panels ?? json.nodes.length;
   const animated = gltf.animations.length > 0;
   for (const id of timelineControls) $(id).disabled = !animated;
@@ -273,8 +313,12 @@ function loadUrl(url, what) {
 }
 /// Loads a .glb the user picked or dropped.
 async function loadFile(file) {
+  if (/\.json$/i.test(file.name)) {
+    openInDesigner(await file.text());  // a preset: the designer edits it (and says what is wrong with it)
+    return;
+  }
   if (!/\.(glb|gltf)$/i.test(file.name)) {
-    $('status').textContent = `${file.name}: the viewer shows .glb files (phedra generate PRESET -o FILE.glb)`;
+    $('status').textContent = `${file.name}: the viewer shows .glb files (phedra generate PRESET -o FILE.glb) and opens presets (.json) in the designer`;
     return;
   }
   $('status').textContent = `loading ${file.name}…`;
@@ -341,6 +385,9 @@ renderer.domElement.addEventListener('pointerup', (e) => {
   if (hit) pickHinge(hit.point);
 });
 $('png').addEventListener('click', savePicture);
+$('save-preset').addEventListener('click', savePreset);
+$('export-fold').addEventListener('click', exportFold);
+$('edit').addEventListener('click', () => openInDesigner(info.preset));
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
   if (e.key === 'f') fit();

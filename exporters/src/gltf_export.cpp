@@ -698,6 +698,7 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
   check_figures["samples"] = tinygltf::Value(static_cast<int>(check.samples));
   phedra["check"] = tinygltf::Value(check_figures);
   if (!options.buildability.is_null()) phedra["buildability"] = to_value(options.buildability);
+  if (!options.preset_text.empty()) phedra["preset"] = tinygltf::Value(options.preset_text);
   tinygltf::Value::Object extras;
   extras["phedra"] = tinygltf::Value(phedra);
   // Where clients read it: three.js keeps asset.extras in parser.json; Blender's

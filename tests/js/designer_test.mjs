@@ -363,6 +363,29 @@ try {
     check(JSON.stringify(back) === JSON.stringify(mine), 'Ctrl+Z after opening a shipped preset does not bring the design back');
   }
 
+  // A .glb phedra wrote opens as the preset it carries; one without a preset says so.
+  {
+    const helixGlb = path.join(scratch, 'helix.glb');
+    execFileSync(phedra, ['generate', path.join(path.dirname(preset), 'helix-tube.json'), '-o', helixGlb, '--quiet']);
+    const mine = await api(() => window.phedraDesigner.preset());
+    await page.setInputFiles('#load', helixGlb);
+    await page.waitForFunction(() => window.phedraDesigner.preset().name === 'helix-tube', null, { timeout: 10000 });
+    const stray = path.join(scratch, 'stray.glb');
+    const bytes = readFileSync(helixGlb);
+    const jsonLength = bytes.readUInt32LE(12);
+    const json = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+    delete json.asset.extras.phedra.preset;
+    const text = Buffer.from(JSON.stringify(json).padEnd(jsonLength, ' '), 'utf8');
+    writeFileSync(stray, Buffer.concat([bytes.subarray(0, 20), text, bytes.subarray(20 + jsonLength)]));
+    await page.setInputFiles('#load', stray);
+    await page.waitForTimeout(200);
+    const said = await page.$eval('#message', (e) => e.textContent);
+    check(said.includes('stray.glb carries no preset'), `a .glb without a preset: "${said}"`);
+    await page.keyboard.press('Control+z');
+    const back = await api(() => window.phedraDesigner.preset());
+    check(JSON.stringify(back) === JSON.stringify(mine), 'Ctrl+Z after opening a .glb does not bring the design back');
+  }
+
 
   // Exports.
   const glb = await api(() => window.phedraDesigner.glbSize());

@@ -7,6 +7,7 @@
 // back and forth at the ends, stepping to keyframes, jumping to t* and the
 // limits, a typed t (and a refused one), a PNG saved, and the status line.
 // usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID
+import { readFileSync } from 'node:fs';
 import { canvasColours, launch, serve } from './browser.mjs';
 
 const [phedra, glb, screenshot, panels, invalid] = process.argv.slice(2);
@@ -123,10 +124,30 @@ try {
   const buildable = Number(invalid) === 0;
   check(buildable ? buildability.startsWith('buildable over the whole flexion interval') : buildability.includes('(invalid panels in red)'),
         `buildability line: "${buildability}"`);
+  // What the designer exports, from the preset the file carries: the preset, its FOLD; and the preset in the designer.
+  for (const id of ['save-preset', 'export-fold', 'edit']) {
+    check(!(await page.$eval(`#${id}`, (e) => e.disabled)), `#${id} is disabled for a file phedra wrote`);
+  }
+  const fileName = await page.$eval('#title', (e) => e.textContent);
+  {
+    const [saved] = await Promise.all([page.waitForEvent('download'), page.click('#save-preset')]);
+    const preset = JSON.parse(readFileSync(await saved.path(), 'utf8'));
+    check(saved.suggestedFilename() === `${fileName}.json` && preset.name === fileName, `Save preset wrote ${saved.suggestedFilename()} named ${preset.name}`);
+    const [fold] = await Promise.all([page.waitForEvent('download', { timeout: 60000 }), page.click('#export-fold')]);
+    const doc = JSON.parse(readFileSync(await fold.path(), 'utf8'));
+    check(doc.file_spec === 1.2 && doc.file_frames?.length === 41 && doc.edges_assignment?.length > 0,
+          `FOLD: spec ${doc.file_spec}, ${doc.file_frames?.length} frames besides the key frame`);
+  }
   await page.click('#to-star');
   await page.waitForTimeout(200);
   if (screenshot) await page.screenshot({ path: screenshot });
   check(!errors.length, `console errors: ${errors.join(' | ')}`);
+  // Edit in designer: the designer page opens with the file's preset.
+  await page.click('#edit');
+  await page.waitForURL(/designer\.html$/, { timeout: 30000 });
+  await page.waitForFunction(() => document.getElementById('name')?.value, null, { timeout: 60000 });
+  const designed = await page.$eval('#name', (e) => e.value);
+  check(designed === fileName, `Edit in designer opened "${designed}", the file is "${fileName}"`);
   console.log(`viewer ${glb}: ${colours} colours, ${info.edges} edges, ${info.invalid} red, vertex moved ${moved.toExponential(3)}, ` +
               `t ${before[1]} -> ${after[1]}, played ${after[2].toFixed(2)} -> ${played.toFixed(2)} s`);
   passed = failures.length ? 0 : 1;

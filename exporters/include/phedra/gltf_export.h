@@ -47,6 +47,10 @@ struct GltfOptions {
   /// Stored as extras.phedra.buildability when not null
   /// (BuildabilityReport::file_json()): what every export says about the design.
   nlohmann::json buildability;
+  /// Stored as extras.phedra.preset when not empty: the preset the file was
+  /// generated from, as JSON text (a string: every client keeps strings), so
+  /// that viewers can export it and its FOLD, and open it in the designer.
+  std::string preset_text;
 };
 
 struct GltfReport {
