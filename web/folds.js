@@ -1,4 +1,4 @@
-// Mountain and valley: the hinges of a morph-target glTF coloured by the sign
+// Mountain and valley: the hinges of a glTF export (either layout) coloured by the sign
 // of their fold at the shown pose (FOLD's convention: valley positive), and the
 // dihedral angle of one hinge over the whole motion.
 import * as THREE from 'three';
@@ -45,57 +45,15 @@ export function hingesOf(panels) {
   return out;
 }
 
-export class Folds {
-  /// `gltf`: a loaded morph-target export (null result for the node layout:
-  /// `Folds.of` returns null then).
-  static of(gltf) {
-    const meshes = [];
-    gltf.scene.traverse((o) => { if (o.isMesh && !o.parent?.isMesh && o.geometry.morphAttributes.position) meshes.push(o); });
-    return meshes.length ? new Folds(gltf, meshes) : null;
-  }
-
-  constructor(gltf, meshes) {
-    this.mesh = meshes[0];  // every primitive shares the positions and the targets
-    const json = gltf.parser.json;
-    this.panels = [];
-    for (const mesh of meshes) {
-      const association = gltf.parser.associations.get(mesh);
-      const primitive = json.meshes[association?.meshes ?? 0]?.primitives[association?.primitives ?? 0];
-      this.panels.push(...primitivePanels(mesh.geometry.index.array, primitive?.extras?.phedra_triangles));
-    }
-    this.hinges = hingesOf(this.panels);
-    const geometry = this.mesh.geometry;
-    const line = (colour) => {
-      const g = new THREE.BufferGeometry();
-      g.setAttribute('position', geometry.getAttribute('position'));
-      g.morphAttributes.position = geometry.morphAttributes.position;
-      g.morphTargetsRelative = geometry.morphTargetsRelative;
-      g.setIndex([]);
-      const l = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: colour, depthFunc: THREE.LessEqualDepth }));
-      l.morphTargetInfluences = this.mesh.morphTargetInfluences;
-      l.morphTargetDictionary = this.mesh.morphTargetDictionary;
-      l.frustumCulled = false;
-      l.renderOrder = 2;
-      this.mesh.add(l);
-      return l;
-    };
-    this.mountain = line(foldColours.mountain);
-    this.valley = line(foldColours.valley);
+/// What the two layouts share: the hinges, their colours at the shown pose, a
+/// picked hinge's angle and ends. Subclasses give shownPositions() (3 numbers a
+/// vertex, in `frame`'s space), setLines(mountain, valley) and the frame.
+class FoldsBase {
+  init(panels, frame) {
+    this.panels = panels;
+    this.hinges = hingesOf(panels);
+    this.frame = frame;  // positions are in this object's space
     this.signs = new Int8Array(this.hinges.length);
-    this.positions = new Float32Array(geometry.getAttribute('position').array.length);
-  }
-
-  /// Every vertex as shown now (object space of the mesh: the morph targets applied).
-  shownPositions() {
-    const base = this.mesh.geometry.getAttribute('position').array, out = this.positions;
-    out.set(base);
-    const morphs = this.mesh.geometry.morphAttributes.position, w = this.mesh.morphTargetInfluences;
-    w.forEach((weight, j) => {
-      if (!weight) return;
-      const d = morphs[j].array;
-      for (let i = 0; i < out.length; ++i) out[i] += weight * d[i];
-    });
-    return out;
   }
 
   /// Fold angle of hinge `h` in degrees at positions `x` (valley > 0).
@@ -122,9 +80,9 @@ export class Folds {
     return { mountains, valleys };
   }
 
-  /// The hinge of panel-triangle hit `hit` (a raycast on a morph mesh) nearest the hit point: its index, or -1.
+  /// The hinge nearest a point of the surface (world space): its index, or -1.
   hingeNear(point) {
-    const x = this.shownPositions(), p = this.mesh.worldToLocal(point.clone());
+    const x = this.shownPositions(), p = this.frame.worldToLocal(point.clone());
     let best = -1, distance = Infinity;
     const s = new THREE.Line3();
     this.hinges.forEach((h, k) => {
@@ -139,7 +97,120 @@ export class Folds {
   /// The two ends of hinge k as shown (world space), for a marker.
   ends(k) {
     const x = this.shownPositions(), h = this.hinges[k];
-    return [new THREE.Vector3(x[3 * h.from], x[3 * h.from + 1], x[3 * h.from + 2]).applyMatrix4(this.mesh.matrixWorld),
-            new THREE.Vector3(x[3 * h.to], x[3 * h.to + 1], x[3 * h.to + 2]).applyMatrix4(this.mesh.matrixWorld)];
+    return [new THREE.Vector3(x[3 * h.from], x[3 * h.from + 1], x[3 * h.from + 2]).applyMatrix4(this.frame.matrixWorld),
+            new THREE.Vector3(x[3 * h.to], x[3 * h.to + 1], x[3 * h.to + 2]).applyMatrix4(this.frame.matrixWorld)];
+  }
+}
+
+/// The hinges of a morph-target export: the lines morph with the mesh on the GPU.
+class MorphFolds extends FoldsBase {
+  constructor(gltf, meshes) {
+    super();
+    this.mesh = meshes[0];  // every primitive shares the positions and the targets
+    const json = gltf.parser.json;
+    const panels = [];
+    for (const mesh of meshes) {
+      const association = gltf.parser.associations.get(mesh);
+      const primitive = json.meshes[association?.meshes ?? 0]?.primitives[association?.primitives ?? 0];
+      panels.push(...primitivePanels(mesh.geometry.index.array, primitive?.extras?.phedra_triangles));
+    }
+    this.init(panels, this.mesh);
+    const geometry = this.mesh.geometry;
+    const line = (colour) => {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', geometry.getAttribute('position'));
+      g.morphAttributes.position = geometry.morphAttributes.position;
+      g.morphTargetsRelative = geometry.morphTargetsRelative;
+      g.setIndex([]);
+      const l = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: colour, depthFunc: THREE.LessEqualDepth }));
+      l.morphTargetInfluences = this.mesh.morphTargetInfluences;
+      l.morphTargetDictionary = this.mesh.morphTargetDictionary;
+      l.frustumCulled = false;
+      l.renderOrder = 2;
+      this.mesh.add(l);
+      return l;
+    };
+    this.mountain = line(foldColours.mountain);
+    this.valley = line(foldColours.valley);
+    this.positions = new Float32Array(geometry.getAttribute('position').array.length);
+  }
+
+  /// Every vertex as shown now (object space of the mesh: the morph targets applied).
+  shownPositions() {
+    const base = this.mesh.geometry.getAttribute('position').array, out = this.positions;
+    out.set(base);
+    const morphs = this.mesh.geometry.morphAttributes.position, w = this.mesh.morphTargetInfluences;
+    w.forEach((weight, j) => {
+      if (!weight) return;
+      const d = morphs[j].array;
+      for (let i = 0; i < out.length; ++i) out[i] += weight * d[i];
+    });
+    return out;
+  }
+}
+
+/// The hinges of a node-per-panel export (`--nodes`): each panel's corners
+/// (node extras.vertices: the file's vertex numbers) placed by its node, the
+/// lines redrawn from them (space of the glTF scene).
+class NodeFolds extends FoldsBase {
+  constructor(gltf, nodes) {
+    super();
+    this.nodes = nodes;  // [{mesh, vertices}]
+    let count = 0;
+    for (const n of nodes) for (const v of n.vertices) count = Math.max(count, v + 1);
+    this.init(nodes.map((n) => n.vertices), gltf.scene);
+    this.positions = new Float32Array(3 * count);
+    this.attribute = new THREE.BufferAttribute(this.positions.slice(), 3);
+    const line = (colour) => {
+      const g = new THREE.BufferGeometry();
+      g.setAttribute('position', this.attribute);
+      g.setIndex([]);
+      const l = new THREE.LineSegments(g, new THREE.LineBasicMaterial({ color: colour, depthFunc: THREE.LessEqualDepth }));
+      l.frustumCulled = false;
+      l.renderOrder = 2;
+      gltf.scene.add(l);
+      return l;
+    };
+    this.mountain = line(foldColours.mountain);
+    this.valley = line(foldColours.valley);
+    this.inverse = new THREE.Matrix4();
+  }
+
+  shownPositions() {
+    const out = this.positions, p = new THREE.Vector3();
+    this.frame.updateMatrixWorld(true);
+    this.inverse.copy(this.frame.matrixWorld).invert();
+    for (const { mesh, vertices } of this.nodes) {
+      const local = mesh.geometry.getAttribute('position');
+      vertices.forEach((v, k) => {
+        p.fromBufferAttribute(local, k).applyMatrix4(mesh.matrixWorld).applyMatrix4(this.inverse);
+        out[3 * v] = p.x; out[3 * v + 1] = p.y; out[3 * v + 2] = p.z;
+      });
+    }
+    return out;
+  }
+
+  update() {
+    this.attribute.array.set(this.shownPositions());
+    this.attribute.needsUpdate = true;
+    return super.update();
+  }
+}
+
+export class Folds {
+  /// The folds of a loaded export, either layout (null when it has no panels).
+  static of(gltf) {
+    const meshes = [];
+    gltf.scene.traverse((o) => { if (o.isMesh && !o.parent?.isMesh && o.geometry.morphAttributes.position) meshes.push(o); });
+    if (meshes.length) return new MorphFolds(gltf, meshes);
+    const json = gltf.parser.json, nodes = [];
+    gltf.scene.traverse((o) => {
+      const index = gltf.parser.associations.get(o)?.nodes;
+      const vertices = index === undefined ? null : json.nodes[index]?.extras?.vertices;
+      if (!vertices) return;
+      const mesh = o.isMesh ? o : o.children.find((c) => c.isMesh);
+      if (mesh) nodes.push({ mesh, vertices });
+    });
+    return nodes.length ? new NodeFolds(gltf, nodes) : null;
   }
 }

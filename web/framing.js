@@ -4,12 +4,19 @@ import * as THREE from 'three';
 
 const v = new THREE.Vector3(), m = new THREE.Vector3();
 
+/// A mesh of the model itself: a morph primitive, or a panel node (whose parent
+/// may be another panel: the hinge tree); not an outline or overlay the page
+/// added to one (those follow their mesh and carry no vertex numbers).
+export function isModelMesh(o) {
+  return o.isMesh && (!o.parent?.isMesh || o.userData.vertices !== undefined);
+}
+
 /// Calls `visit(world position)` for every vertex of `object`'s meshes as shown
 /// now (morph targets applied; the vector is reused).
 export function forEachShownVertex(object, visit) {
   object.updateMatrixWorld(true);
   object.traverse((o) => {
-    if (!o.isMesh || o.parent?.isMesh) return;  // outlines and overlays follow their mesh
+    if (!isModelMesh(o)) return;
     const position = o.geometry.getAttribute('position');
     const morphs = o.geometry.morphAttributes.position;
     const weights = o.morphTargetInfluences ?? [];

@@ -8,7 +8,7 @@ import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
 import { Folds, foldColours } from './folds.js';
-import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, motionBox, readableNumbers } from './framing.js';
+import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox, readableNumbers } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
 const { renderer, scene, camera, controls } = createStage();
@@ -398,7 +398,7 @@ window.addEventListener('keydown', (e) => {
 
 const clock = new THREE.Clock();
 renderer.setAnimationLoop(() => {
-  const dt = clock.getDelta();
+  const dt = Math.min(clock.getDelta(), 0.1);  // a stalled frame (a busy tab) does not make the motion jump
   if (mixer && playing) {
     let next = position + direction * Number($('speed').value) * dt;
     const mode = $('loop').value;
@@ -432,7 +432,7 @@ window.phedraViewer = {
   vertex(index) {
     let found = null;
     scene.traverse((o) => {
-      if (found || !o.isMesh || o.parent?.isMesh) return;
+      if (found || !isModelMesh(o)) return;
       const ids = o.userData.vertices;
       const local = ids ? ids.indexOf(index) : index;
       const position = o.geometry.getAttribute('position');

@@ -6,11 +6,11 @@
 // the slider moves the pose and t, Play continues from where the slider is,
 // back and forth at the ends, stepping to keyframes, jumping to t* and the
 // limits, a typed t (and a refused one), a PNG saved, and the status line.
-// usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID
+// usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID [REPRESENTATION]
 import { readFileSync } from 'node:fs';
 import { canvasColours, launch, serve } from './browser.mjs';
 
-const [phedra, glb, screenshot, panels, invalid] = process.argv.slice(2);
+const [phedra, glb, screenshot, panels, invalid, representation = 'morph targets'] = process.argv.slice(2);
 const { server, address } = await serve(phedra, glb, /http:\/\/127\.0\.0\.1:\d+\//);
 
 const failures = [];
@@ -35,7 +35,7 @@ try {
   check(info.edges >= Number(panels), `${info.edges} edges drawn for ${panels} panels`);
   check(info.invalid === Number(invalid), `${info.invalid} panels drawn red, the file names ${invalid}`);
   const status = await page.$eval('#status', (e) => e.textContent);
-  check(status.startsWith(`${panels} panels (morph targets)`), `status line: "${status}"`);
+  check(status.startsWith(`${panels} panels (${representation})`), `status line: "${status}"`);
 
   // Framing over the whole motion: inside the canvas (and not a speck) at both limits and t*.
   const times = await viewer(() => {
@@ -52,8 +52,16 @@ try {
   // Mountain and valley hinges coloured; a click on a hinge plots its fold angle over the motion.
   check(info.mountains + info.valleys > 0, `no hinge coloured mountain or valley: ${JSON.stringify(info)}`);
   {
-    const hinges = await viewer(() => window.phedraViewer.hinges());
-    const at = await viewer((k) => window.phedraViewer.hingeScreen(k), Math.floor(hinges / 2));
+    // The hinge nearest the middle of the canvas (one surely in view).
+    const at = await viewer(() => {
+      const v = window.phedraViewer, r = document.querySelector('#view canvas').getBoundingClientRect();
+      let best = null;
+      for (let k = 0; k < v.hinges(); ++k) {
+        const p = v.hingeScreen(k), d = Math.hypot(p[0] - (r.left + r.width / 2), p[1] - (r.top + r.height / 2));
+        if (!best || d < best.d) best = { d, p };
+      }
+      return best.p;
+    });
     await page.mouse.click(at[0], at[1]);
     await page.waitForTimeout(200);
     const picked = await viewer(() => window.phedraViewer.state().picked);
