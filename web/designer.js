@@ -5,9 +5,8 @@
 // CLI's, and a saved preset gives the same `phedra sample` result.
 import * as THREE from 'three';
 import { createStage } from './scene.js';
-import { frameBox } from './framing.js';
+import { frameBox, groundGrid, readableNumbers } from './framing.js';
 import { foldAngle, foldColours, hingesOf } from './folds.js';
-import { readableNumbers } from './framing.js';
 import createPhedra from './wasm/phedra.mjs';
 
 const $ = (id) => document.getElementById(id);
@@ -183,10 +182,20 @@ function designBox(motion = true) {
 /// Frames the design over its motion (Fit view, f), or as shown at the slider's
 /// t (Fit t, Shift+F: larger, for editing), in the part of the canvas the panel leaves free.
 let framed = false;  // the first framing happened
+let ground = [];     // the ground grid and the axes, placed under the whole motion at each Fit view
 function fitView({ motion = true } = {}) {
   framed = true;
   const canvas = renderer.domElement, panel = $('panel').getBoundingClientRect();
-  frameBox(camera, controls, designBox(motion), { left: panel.right + 8, width: canvas.clientWidth, height: canvas.clientHeight });
+  const box = designBox(motion);
+  if (motion && !box.isEmpty()) {
+    scene.remove(...ground);
+    const { grid, cell } = groundGrid(box, 'z');
+    const axes = new THREE.AxesHelper(cell).translateX(box.min.x).translateY(box.min.y).translateZ(box.min.z);
+    ground = [grid, axes];
+    scene.add(...ground);
+    $('scale').textContent = `grid cells of ${Number(cell.toPrecision(6))} model units; axes x red, y green, z (up) blue, one cell long`;
+  }
+  frameBox(camera, controls, box, { left: panel.right + 8, width: canvas.clientWidth, height: canvas.clientHeight });
   requestRender();
 }
 /// Refits when an edit took the shown surface out of the view (never while dragging).

@@ -81,15 +81,22 @@ export function roundUp125(x) {
   return 10 * p;
 }
 
-/// A ground grid under `box` (at its lowest y) with cells of a round size, about
-/// ten across the model. Returns {grid, cell}.
-export function groundGrid(box) {
+/// A ground grid under `box` (at its lowest y, or z with `up` 'z': presets are
+/// z-up, glTF y-up) with cells of a round size, about ten across the model.
+/// Returns {grid, cell}.
+export function groundGrid(box, up = 'y') {
   const size = box.getSize(new THREE.Vector3());
-  const cell = roundUp125(Math.max(size.x, size.z, 1e-9) / 10);
-  const cells = 2 * Math.ceil(0.5 * (Math.max(size.x, size.z) * 1.6) / cell);
+  const across = up === 'z' ? Math.max(size.x, size.y) : Math.max(size.x, size.z);
+  const cell = roundUp125(Math.max(across, 1e-9) / 10);
+  const cells = 2 * Math.ceil(0.5 * (across * 1.6) / cell);
   const grid = new THREE.GridHelper(cells * cell, cells, 0x56606c, 0x343b44);
   const centre = box.getCenter(new THREE.Vector3());
-  grid.position.set(centre.x, box.min.y, centre.z);
+  if (up === 'z') {
+    grid.rotation.x = Math.PI / 2;  // the helper lies in x-z
+    grid.position.set(centre.x, centre.y, box.min.z);
+  } else {
+    grid.position.set(centre.x, box.min.y, centre.z);
+  }
   return { grid, cell };
 }
 

@@ -50,6 +50,9 @@ try {
   }
   check(colours >= 10, `the canvas looks blank (${colours} colours)`);
   if (screenshot) await page.screenshot({ path: screenshot });
+  // A ground grid and axes give the scale.
+  const scale = await page.$eval('#scale', (e) => e.textContent);
+  check(/^grid cells of [\d.e-]+ model units; axes x red, y green, z \(up\) blue/.test(scale), `scale line: "${scale}"`);
 
   // Buildability (issue 13): the status line, the red and orange panels, the
   // buildable part of the slider, the causes, all as `phedra check` says.
