@@ -333,8 +333,11 @@ class Unfolder {
       std::optional<std::size_t> best;
       SeamSide best_side;
       double best_score = -1.0;
+      bool any_cuttable = false;
+      for (const auto& [p, s] : sides) any_cuttable = any_cuttable || pieces_[p].cuttable;
       for (std::size_t k = 0; k < sides.size(); ++k) {
         const auto& [p, s] = sides[k];
+        if (any_cuttable && !pieces_[p].cuttable) continue;  // no tab on a panel that cannot be cut
         SeamSide trial = pieces_[p].seams[s];
         if (!add_tab(pieces_[p], trial)) continue;
         const Polygon2& t = *trial.tab;
