@@ -2,6 +2,7 @@
 
 #include "phedra/assembly_check.h"
 #include "phedra/bench_cases.h"
+#include "phedra/cut_sheets.h"
 #include "phedra/gltf_export.h"
 #include "phedra/interval_check.h"
 #include "phedra/number_format.h"
@@ -365,6 +366,13 @@ class Runner {
             std::to_string(cells) + " array, " + std::to_string(report.panels) + " panels, " +
             std::to_string(report.keyframes) + " keyframes",
         seconds, "s", 2.0);
+    // Cut sheets of the same array (phedra outlines: unfolding, labels, pages), no target.
+    CutSheets sheets;
+    const double outline_seconds = best_seconds([&] { sheets = cut_sheets(array, {}); }, 0.0, 1, 1);
+    add("outlines.array_s",
+        "cut sheets (outlines: strips unfolded, labels fitted, A4 pages) of the same array, " +
+            std::to_string(sheets.pages.size()) + " pages, " + std::to_string(sheets.pieces.size()) + " pieces",
+        outline_seconds, "s");
   }
 
   void repair_one(const std::string& id, const std::string& what, const nlohmann::json& preset,
