@@ -68,7 +68,9 @@ Box2 upright(const Box2& box) {
 std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t> edge, const std::string& text,
                               double max_height, const std::vector<Box2>& avoid) {
   const double ratio = text_width(text, 1.0);
-  const auto [centroid, axis] = centre_and_axis(outline);
+  // (Not a structured binding: the lambdas below capture these, which clang refuses before C++20's P1091 lands.)
+  const std::pair<Vec2, Vec2> frame = centre_and_axis(outline);
+  const Vec2 centroid = frame.first, axis = frame.second;
   auto fits = [&](const Vec2& centre, double h) {
     const Box2 box = label_box(outline, edge, ratio, h, centre, axis);
     return box_inside(outline, box, 0.15 * h) && clear_of(box, avoid, 0.15 * h);
