@@ -182,9 +182,11 @@ void check_sheets(const Design& design, const CutSheets& s) {
     }
     CHECK(overlaps == 0);
     CHECK(label_overlaps == 0);
-    // Header and footer texts stay on the page.
+    // Header and footer texts stay on the page, clear of every piece.
     for (const SheetText& t : s.pages[k].texts) {
       for (const Vec2& c : t.box.corners()) CHECK(inside_box(Box2{Vec2::Zero(), Vec2::UnitX(), s.page.x(), s.page.y()}, c));
+      if (t.role == TextRole::panel || t.role == TextRole::seam) continue;
+      for (const Vec2& c : t.box.corners()) CHECK(!inside_box(s.content, c));
     }
   }
 }

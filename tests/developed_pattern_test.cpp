@@ -142,8 +142,8 @@ TEST_CASE("crease assignments: mirrored choices swap every mountain and valley, 
   CHECK_THAT(svg, Contains("class=\"valley\""));
   CHECK(svg.find("nan") == std::string::npos);
   // Readable without the docs: a visible title, a legend that names every line and the dots, a scale bar, in mm.
-  for (const char* text : {">" /* title */, "crease pattern</text>", ">mountain fold</text>", ">valley fold (towards you)</text>",
-                           ">boundary (cut)</text>", ">the axis (x = 0)</text>", ">apex S_j of profile j, on the axis</text>",
+  for (const char* text : {">" /* title */, "crease pattern</text>", ">mountain fold (away from you)</text>", ">valley fold (towards you)</text>",
+                           ">boundary (cut)</text>", ">the axis (x = 0)</text>", ">A0, A1, ...: the apex of each profile, on the axis</text>",
                            " model units</text>", "mm\" height=\""}) {
     CHECK_THAT(svg, Contains(text));
   }

@@ -207,9 +207,24 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
   for (std::size_t s = 0; s < series.size(); ++s) {
     const auto& [name, values] = series[s];
     std::string points, markers;
+    std::optional<double> last;
+    auto flush = [&] {
+      if (!points.empty()) {
+        svg << "<polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" << colours[s % 5] << "\" points=\"" << points
+            << "\"/>";
+      }
+      points.clear();
+    };
     for (std::size_t k = 0; k < values.size(); ++k) {
-      if (!values[k]) continue;
+      if (!values[k]) {
+        flush();  // undefined here: the line breaks
+        last.reset();
+        continue;
+      }
       const double v = clip ? std::clamp(*values[k], -*clip, *clip) : *values[k];
+      // A jump across most of the axis (a ratio through infinity) is not joined by a line.
+      if (last && std::abs(v - *last) > 0.6 * (hi - lo)) flush();
+      last = v;
       points += px(sx(r.samples[k].t)) + "," + px(sy(v)) + " ";
       if (clip && std::abs(*values[k]) > *clip) {
         const double u = sx(r.samples[k].t), e = sy(v), d = *values[k] > 0 ? -5.0 : 5.0;
@@ -217,8 +232,8 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
                    px(e) + " " + px(u + 3) + "," + px(e) + " " + px(u) + "," + px(e + d) + "\"/>";
       }
     }
-    svg << "<polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" << colours[s % 5] << "\" points=\"" << points
-        << "\"/>" << markers << "\n";
+    flush();
+    svg << markers << "\n";
     svg << "<line x1=\"" << px(x + w + 10) << "\" y1=\"" << px(legend_y - 4) << "\" x2=\"" << px(x + w + 28) << "\" y2=\""
         << px(legend_y - 4) << "\" stroke-width=\"2\" stroke=\"" << colours[s % 5] << "\"/><text x=\"" << px(x + w + 32)
         << "\" y=\"" << px(legend_y) << "\">" << escape(name) << "</text>\n";

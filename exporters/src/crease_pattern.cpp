@@ -124,7 +124,7 @@ CreaseDrawing crease_drawing(const CreasePattern& c, std::optional<double> scale
     const Vec2 p = at(0.0, c.apex_heights[j]);
     page.fills.push_back(SheetFill{{p + Vec2(-0.6, -0.6), p + Vec2(0.6, -0.6), p + Vec2(0.6, 0.6), p + Vec2(-0.6, 0.6)},
                                    FillStyle::marker, std::nullopt});
-    const std::string name = "S" + std::to_string(j);
+    const std::string name = "A" + std::to_string(j);
     add_text(page, name, p + Vec2(-1.5 - text_width(name, 1.6), -0.8), 1.6, TextRole::note);
   }
   const double top = d.size.y() - margin, right = d.size.x() - margin;
@@ -133,12 +133,12 @@ CreaseDrawing crease_drawing(const CreasePattern& c, std::optional<double> scale
   std::snprintf(folded, sizeof folded, "%zu mountain and %zu valley creases, folding towards t = %.6g; x: distance from the axis, z: height", c.mountains, c.valleys, c.t);
   add_text(page, folded, Vec2(margin, top - 10.0), 2.2, TextRole::note);
   Legend legend(page, margin, right, top - 16.0);
-  legend.line(LineStyle::mountain, "mountain fold");
+  legend.line(LineStyle::mountain, "mountain fold (away from you)");
   legend.line(LineStyle::valley, "valley fold (towards you)");
   legend.line(LineStyle::cut, "boundary (cut)");
   if (any_flat) legend.line(LineStyle::flat, "crease that stays flat");
   legend.line(LineStyle::axis, "the axis (x = 0)");
-  legend.fill(FillStyle::marker, "apex S_j of profile j, on the axis");
+  legend.fill(FillStyle::marker, "A0, A1, ...: the apex of each profile, on the axis");
   add_scale_bar(page, Vec2(margin, margin), d.scale, std::min(50.0, 0.4 * (right - margin)));
   return d;
 }

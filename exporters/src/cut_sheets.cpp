@@ -16,7 +16,6 @@
 namespace phedra {
 namespace {
 
-constexpr double header_mm = 28.0;  ///< title, up to three legend rows
 constexpr double footer_mm = 6.0;
 
 std::string six(double x) {
@@ -89,27 +88,32 @@ void place(Piece& piece, const Placement& at) {
   }
 }
 
-/// Title, legend, scale bar and footer of page k of n.
-void decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat) {
+/// Title, legend, scale bar and footer of page k of n; returns the height
+/// (from the page's top) the title and legend take.
+double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat,
+                bool any_seam_on_fold) {
   const double m = 10.0, top = s.page.y() - m, right = s.page.x() - m;
   add_text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
                      to_string(s.mode) + ")",
            Vec2(m, top - 4.0), 4.0, TextRole::title);
   Legend legend(page, m, right, top - 11.0);
   legend.line(LineStyle::cut, "cut");
-  legend.line(LineStyle::mountain, "mountain fold");
-  legend.line(LineStyle::valley, "valley fold");
-  if (any_flat) legend.line(LineStyle::flat, "hinge flat at t* (crease it)");
-  legend.line(LineStyle::tab_fold, "fold the tab under");
+  legend.line(LineStyle::mountain, "mountain fold (away from you)");
+  legend.line(LineStyle::valley, "valley fold (towards you)");
+  if (any_flat) legend.line(LineStyle::flat, "flat hinge (crease it)");
+  legend.line(LineStyle::tab_fold, "tab fold");
   legend.fill(FillStyle::swatch_tab, "glue tab");
   legend.sample("S1", TextRole::seam, "glue to the other S1");
+  if (any_seam_on_fold) legend.sample("S2", TextRole::seam, "by a fold: glue the other S2 onto it");
   legend.sample("P7", TextRole::panel, s.mode == PieceMode::cells ? "panel 7 (a wall: glue its two copies face to face)"
-                                                                   : "panel 7 of the exports");
+                                                                   : "panel 7 (as numbered in the 3D files)");
   if (any_uncuttable) legend.fill(FillStyle::swatch_not_cuttable, "not one plate (see phedra check)");
+  legend.note(std::string("pieces in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row"));
   // Footer: scale bar and printing note.
   add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
   const std::string note = "print at 100 % (actual size)";
   add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
+  return s.page.y() - legend.bottom();
 }
 
 }  // namespace
@@ -201,21 +205,12 @@ std::vector<Vec2> Piece::points() const {
   return out;
 }
 
-CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
-  const Assembly& a = design.assembly;
-  if (options.scale && !(*options.scale > 0.0 && std::isfinite(*options.scale))) {
-    throw InvalidInputError("--scale", "must be a positive number of millimetres per model unit");
-  }
-  if (!(options.tab_depth > 0.0 && options.tab_depth < 0.5)) {
-    throw InvalidInputError("--tab-depth", "must lie in (0, 0.5) of the seam's length");
-  }
-  CutSheets s;
-  s.name = a.name();
-  s.mode = options.mode;
-  s.page = options.page;
-  s.scale = options.scale ? *options.scale : options.model_mm / a.model_size();
+namespace {
+
+/// Unfolds, labels and lays out the pieces under a header `header` mm tall.
+CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheets s, double header) {
   const double m = options.margin;
-  s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header_mm - footer_mm};
+  s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header - footer_mm};
   const double tab_room = options.tabs ? 2.0 * options.max_tab_mm : 0.0;
   const Vec2 fit(s.content.width - tab_room, s.content.height - tab_room);
   s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams);
@@ -246,7 +241,9 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
     shelf = std::max(shelf, size.y());
   }
   s.pages.resize(s.pieces.empty() ? 1 : page + 1);
-  bool any_uncuttable = false, any_flat = false;
+  bool& any_uncuttable = s.any_uncuttable;
+  bool& any_flat = s.any_flat;
+  bool& any_seam_on_fold = s.any_seam_on_fold;
   s.smallest_label = std::numeric_limits<double>::infinity();
   for (std::size_t p = 0; p < s.pieces.size(); ++p) {
     const Piece& piece = s.pieces[p];
@@ -261,17 +258,54 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
     any_uncuttable = any_uncuttable || !piece.cuttable;
     s.folds += piece.folds.size();
     for (const PieceFold& f : piece.folds) any_flat = any_flat || f.style == LineStyle::flat;
+    for (const SeamSide& side : piece.seams) any_seam_on_fold = any_seam_on_fold || side.on_fold;
     for (const SeamSide& side : piece.seams) s.tabs += side.tab ? 1 : 0;
   }
   if (!std::isfinite(s.smallest_label)) s.smallest_label = 0.0;
   s.untabbed_seams = options.tabs ? s.seams - s.tabs : 0;
-  for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat);
+  for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat, any_seam_on_fold);
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {
       if (!l.a.allFinite() || !l.b.allFinite()) throw Error(ExitCode::internal, "a cut-sheet line is not finite");
     }
   }
   return s;
+}
+
+}  // namespace
+
+CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
+  const Assembly& a = design.assembly;
+  if (options.scale && !(*options.scale > 0.0 && std::isfinite(*options.scale))) {
+    throw InvalidInputError("--scale", "must be a positive number of millimetres per model unit");
+  }
+  if (!(options.tab_depth > 0.0 && options.tab_depth < 0.5)) {
+    throw InvalidInputError("--tab-depth", "must lie in (0, 0.5) of the seam's length");
+  }
+  CutSheets base;
+  base.name = a.name();
+  base.mode = options.mode;
+  base.page = options.page;
+  base.scale = options.scale ? *options.scale : options.model_mm / a.model_size();
+  const double m = options.margin;
+  // The header as tall as the legend needs on this page width, and a 4 mm gap:
+  // first with every item (the flags are known once the pieces are), then, when
+  // the items shown need fewer rows, again with the room that frees.
+  auto header_for = [&](bool uncuttable, bool flat, bool on_fold) {
+    CutSheets probe_sheets = base;
+    probe_sheets.pages.resize(1);
+    SheetPage probe;
+    return decorate(probe, probe_sheets, 0, uncuttable, flat, on_fold) + 4.0 - m;
+  };
+  auto flags_header = [&](const CutSheets& s) { return header_for(s.any_uncuttable, s.any_flat, s.any_seam_on_fold); };
+  const double worst = header_for(true, true, true);
+  CutSheets first = lay_out(design, options, base, worst);
+  const double tight = flags_header(first);
+  if (tight < worst - 0.5) {
+    CutSheets again = lay_out(design, options, base, tight);
+    if (flags_header(again) <= tight + 1e-9) return again;
+  }
+  return first;
 }
 
 }  // namespace phedra

@@ -60,7 +60,8 @@ Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double 
 }  // namespace
 
 Box2 upright(const Box2& box) {
-  const bool upside_down = box.axis.x() < -1e-9 || (std::abs(box.axis.x()) <= 1e-9 && box.axis.y() < 0.0);
+  // Left to right, or (within 15 degrees of vertical) bottom to top, as drawings label vertical lines.
+  const bool upside_down = box.axis.x() < -1e-9 || (box.axis.x() < 0.26 && box.axis.y() < 0.0);
   if (!upside_down) return box;
   return Box2{box.origin + box.width * box.axis + box.height * box.up(), -box.axis, box.width, box.height};
 }
@@ -70,7 +71,8 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
   const double ratio = text_width(text, 1.0);
   // (Not a structured binding: the lambdas below capture these, which clang refuses before C++20's P1091 lands.)
   const std::pair<Vec2, Vec2> frame = centre_and_axis(outline);
-  const Vec2 centroid = frame.first, axis = frame.second;
+  const Vec2 centroid = frame.first;
+  Vec2 axis = frame.second;  // a panel label tries every edge's direction (below)
   auto fits = [&](const Vec2& centre, double h) {
     const Box2 box = label_box(outline, edge, ratio, h, centre, axis);
     return box_inside(outline, box, 0.15 * h) && clear_of(box, avoid, 0.15 * h);
@@ -103,27 +105,47 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
     if (best <= 0.0) return std::nullopt;
     return label_box(outline, edge, ratio, best, best_centre, axis);
   }
-  Vec2 best_centre = centroid;
-  double best = largest(centroid);
-  if (best < max_height) {
-    // A panel label squeezed at the centroid (by seam labels, or a slim panel): try a grid of centres.
-    const Vec2 up(-axis.y(), axis.x());
-    double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
-    for (const Vec2& p : outline) {
-      s0 = std::min(s0, (p - centroid).dot(axis)), s1 = std::max(s1, (p - centroid).dot(axis));
-      t0 = std::min(t0, (p - centroid).dot(up)), t1 = std::max(t1, (p - centroid).dot(up));
-    }
-    for (int i = 1; i < 6; ++i) {
-      for (int j = 1; j < 6; ++j) {
-        const Vec2 c = centroid + (s0 + (s1 - s0) * i / 6.0) * axis + (t0 + (t1 - t0) * j / 6.0) * up;
-        if (!inside(outline, c) || !fits(c, std::min(1.05 * best, max_height))) continue;  // cannot beat the best
-        const double h = largest(c);
-        if (h > 1.05 * best) best = h, best_centre = c;
+  // A panel label: along the longest edge first, then along the others; at the
+  // centroid, then (when squeezed) at a grid of centres.
+  std::vector<Vec2> axes{frame.second};
+  for (std::size_t k = 0; k < outline.size(); ++k) {
+    const Vec2 e = outline[(k + 1) % outline.size()] - outline[k];
+    if (e.squaredNorm() == 0.0) continue;
+    const Vec2 d = e.normalized();
+    bool known = false;
+    for (const Vec2& other : axes) known = known || std::abs(std::abs(d.dot(other)) - 1.0) < 1e-3;
+    if (!known) axes.push_back(d);
+  }
+  Vec2 best_centre = centroid, best_axis = frame.second;
+  double best = 0.0;
+  for (const Vec2& candidate : axes) {
+    axis = candidate;
+    if (best > 0.0 && !fits(centroid, std::min(1.1 * best, max_height)) && best >= 0.5 * max_height) continue;
+    double here = largest(centroid);
+    Vec2 here_centre = centroid;
+    if (here < max_height) {
+      // Squeezed at the centroid (by seam labels, or a slim panel): a grid of centres.
+      const Vec2 up(-axis.y(), axis.x());
+      double s0 = 1e300, s1 = -1e300, t0 = 1e300, t1 = -1e300;
+      for (const Vec2& p : outline) {
+        s0 = std::min(s0, (p - centroid).dot(axis)), s1 = std::max(s1, (p - centroid).dot(axis));
+        t0 = std::min(t0, (p - centroid).dot(up)), t1 = std::max(t1, (p - centroid).dot(up));
+      }
+      const double target = std::max(here, best);
+      for (int i = 1; i < 6; ++i) {
+        for (int j = 1; j < 6; ++j) {
+          const Vec2 c = centroid + (s0 + (s1 - s0) * i / 6.0) * axis + (t0 + (t1 - t0) * j / 6.0) * up;
+          if (!inside(outline, c) || !fits(c, std::min(1.05 * std::max(target, here), max_height))) continue;
+          const double h = largest(c);
+          if (h > 1.05 * here) here = h, here_centre = c;
+        }
       }
     }
+    if (here > 1.1 * best) best = here, best_centre = here_centre, best_axis = axis;  // the first axis wins ties
+    if (best >= max_height) break;
   }
   if (best <= 0.0) return std::nullopt;
-  return label_box(outline, edge, ratio, best, best_centre, axis);
+  return label_box(outline, edge, ratio, best, best_centre, best_axis);
 }
 
 namespace {
@@ -141,7 +163,8 @@ std::vector<SheetText> seam_labels(const Piece& piece, std::size_t i, double cap
     if (side.panel != i) continue;
     const std::string text = "S" + std::to_string(side.seam);
     std::optional<Box2> box = on_tab[k];
-    if (!box || box->height < 0.8 * cap) {
+    // A tab carries its seam's label whenever it is readable there (a maker looks for it on the tab).
+    if (!box || (box->height < readable_label_mm && box->height < 0.8 * cap)) {
       auto on_panel = fit_label(piece.panels[i].outline, side.edge, text, cap, taken);
       if (on_panel && (!box || on_panel->height > box->height)) {
         taken.push_back(*on_panel);

@@ -48,9 +48,9 @@ const char* svg_style(LineStyle style) {
   switch (style) {
     case LineStyle::cut: return "stroke=\"#000\" stroke-width=\"0.25\"";
     case LineStyle::mountain: return "stroke=\"#c62828\" stroke-width=\"0.3\" stroke-dasharray=\"3 1 0.6 1\"";
-    case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2 1\"";
-    case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.25\" stroke-dasharray=\"1 1\"";
-    case LineStyle::tab_fold: return "stroke=\"#777\" stroke-width=\"0.25\" stroke-dasharray=\"0.6 0.8\"";
+    case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2.5 1.2\"";
+    case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.3\" stroke-dasharray=\"0.1 0.9\"";
+    case LineStyle::tab_fold: return "stroke=\"#999\" stroke-width=\"0.15\"";
     case LineStyle::frame: return "stroke=\"#ccc\" stroke-width=\"0.2\"";
     case LineStyle::axis: return "stroke=\"#999\" stroke-width=\"0.2\" stroke-dasharray=\"4 1.5\"";
   }
@@ -136,6 +136,12 @@ void Legend::sample(const std::string& label, TextRole role, const std::string& 
   add_text(page_, label, Vec2(x_, row_), h_, role);
   x_ += text_width(label, h_) + 2.0;
   add_text(page_, what, Vec2(x_, row_), h_);
+  x_ += text_width(what, h_) + 6.0;
+}
+
+void Legend::note(const std::string& what) {
+  room(text_width(what, h_));
+  add_text(page_, what, Vec2(x_, row_), h_, TextRole::note);
   x_ += text_width(what, h_) + 6.0;
 }
 

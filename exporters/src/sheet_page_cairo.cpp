@@ -24,9 +24,9 @@ void set_line(cairo_t* cr, LineStyle style) {
   switch (style) {
     case LineStyle::cut: cairo_set_source_rgb(cr, 0, 0, 0), cairo_set_line_width(cr, 0.25), dash({}); break;
     case LineStyle::mountain: cairo_set_source_rgb(cr, 0.78, 0.16, 0.16), cairo_set_line_width(cr, 0.3), dash({3, 1, 0.6, 1}); break;
-    case LineStyle::valley: cairo_set_source_rgb(cr, 0.12, 0.36, 0.72), cairo_set_line_width(cr, 0.3), dash({2, 1}); break;
-    case LineStyle::flat: cairo_set_source_rgb(cr, 0.18, 0.49, 0.2), cairo_set_line_width(cr, 0.25), dash({1, 1}); break;
-    case LineStyle::tab_fold: cairo_set_source_rgb(cr, 0.47, 0.47, 0.47), cairo_set_line_width(cr, 0.25), dash({0.6, 0.8}); break;
+    case LineStyle::valley: cairo_set_source_rgb(cr, 0.12, 0.36, 0.72), cairo_set_line_width(cr, 0.3), dash({2.5, 1.2}); break;
+    case LineStyle::flat: cairo_set_source_rgb(cr, 0.18, 0.49, 0.2), cairo_set_line_width(cr, 0.3), dash({0.1, 0.9}); break;
+    case LineStyle::tab_fold: cairo_set_source_rgb(cr, 0.6, 0.6, 0.6), cairo_set_line_width(cr, 0.15), dash({}); break;
     case LineStyle::frame: cairo_set_source_rgb(cr, 0.8, 0.8, 0.8), cairo_set_line_width(cr, 0.2), dash({}); break;
     case LineStyle::axis: cairo_set_source_rgb(cr, 0.6, 0.6, 0.6), cairo_set_line_width(cr, 0.2), dash({4, 1.5}); break;
   }

@@ -21,6 +21,8 @@ namespace {
 
 /// Overlaps up to this (mm) are contact (shared edges and corners, rounding).
 constexpr double contact_mm = 1e-6;
+/// Panels are joined in a piece only across a fold at least this long (mm).
+constexpr double shortest_fold_mm = 1.0;
 
 struct Face {
   std::size_t panel = 0, member = 0, row = 0, column = 0;
@@ -237,6 +239,8 @@ class Unfolder {
         // g's corners t.edge + 1 and t.edge are f's corners s.edge and s.edge + 1.
         const Face& g = mesh_.faces[t.face];
         const std::size_t n = g.corners.size(), m = mesh_.faces[f].corners.size();
+        // A fold shorter than this tears or cannot be creased: glue there instead.
+        if ((placed_[f][(s.edge + 1) % m] - placed_[f][s.edge]).norm() < shortest_fold_mm) continue;
         const Polygon2 shape = attach(flat(mesh_, g, scale_), (t.edge + 1) % n, t.edge, placed_[f][s.edge],
                                       placed_[f][(s.edge + 1) % m]);
         if (!room_for(piece, shape, points)) continue;

@@ -93,6 +93,8 @@ struct CutSheets {
   std::size_t seams = 0, folds = 0, tabs = 0;
   std::size_t untabbed_seams = 0;         ///< seams with no room for a tab on any side
   double smallest_label = 0.0;            ///< mm (capital height)
+  /// What the legend shows besides the lines every sheet has.
+  bool any_uncuttable = false, any_flat = false, any_seam_on_fold = false;
 };
 
 /// Smallest readable capital height (mm) the report warns below.

@@ -57,6 +57,8 @@ class Legend {
   void fill(FillStyle style, const std::string& what);
   /// A label as it appears on the sheet, then what it means.
   void sample(const std::string& label, TextRole role, const std::string& what);
+  /// A remark in the flow of the items.
+  void note(const std::string& what);
   double bottom() const { return row_; }
 
  private:
