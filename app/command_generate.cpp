@@ -26,6 +26,7 @@ struct GenerateOptions {
   MotionParameters parameters;
   double seconds = 4.0;
   bool ping_pong = false;
+  double ease = 1.0 / 16.0;
   std::optional<double> static_t;
   double hinge_tolerance = 1e-3;
   bool quiet = false;
@@ -81,6 +82,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   options.binary = binary;
   options.seconds = o.seconds;
   options.ping_pong = o.ping_pong;
+  options.ease = o.ease;
   options.static_t = o.static_t;
   options.morph = !o.nodes;
   options.cycle = o.cycle;
@@ -118,12 +120,17 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
                 << ", " << format_human(range ? range->second : f.upper.t) << "] in " << format_human(o.seconds)
                 << " s" << back << '\n';
   }
+  if (o.ease > 0.0) {
+    context.out << "time linear in t but within " << format_human(o.ease * o.seconds)
+                << " s of a flexion limit, where t moves as the square of time (the time map in the file; "
+                   "docs/formats.md, \"Time and t\")\n";
+  }
   context.out << "largest vertex error between keyframes: " << format_human(report.max_vertex_error) << " ("
               << format_human(report.max_vertex_error / report.model_size) << " of the model size, at t = "
               << format_human(report.vertex_error_t) << "; tolerance " << format_human(o.hinge_tolerance)
               << ", measured at 15 points between every two keyframes)\n";
   if (report.narrow_vertex_error > report.tolerance) {
-    context.out << "next to the flexion limits, within " << format_human(report.narrow_seconds * 1000.0)
+    context.out << "next to the flexion limits (time linear in t there, --ease 0), within " << format_human(report.narrow_seconds * 1000.0)
                 << " ms of the animation in all (keyframes no closer than 0.02 frame at 24 fps; the motion moves as "
                    "the square root of the distance to a limit): up to "
                 << format_human(report.narrow_vertex_error / report.model_size) << " of the model size\n";
@@ -157,6 +164,12 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
+  sub->add_option("--ease", o->ease,
+                  "glTF: fraction of --seconds eased at each flexion limit: time is linear in t but there, where the "
+                  "distance to the limit grows as the square of time, so that the motion (which moves as its square "
+                  "root) keeps a bounded speed and keyframes can follow it; 0: time linear in t throughout")
+      ->check(CLI::Range(0.0, 0.5))
+      ->capture_default_str();
   sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
   sub->add_option("--tolerance,--hinge-tolerance", o->hinge_tolerance,
                   "glTF: largest distance of a vertex from its exact place between keyframes (and, with --nodes, "

@@ -19,7 +19,7 @@ bash scripts/build-nlopt-wasm.sh  # NLopt for repair, from Debian's source packa
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
        -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
 sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp repair/src/*.cpp
-         exporters/src/fold_export.cpp exporters/src/gltf_export.cpp exporters/src/keyframes.cpp
+         exporters/src/fold_export.cpp exporters/src/gltf_export.cpp exporters/src/keyframes.cpp exporters/src/time_map.cpp
          exporters/src/panel_tree.cpp wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
 pids=()

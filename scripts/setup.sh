@@ -4,7 +4,8 @@
 # chromium runs the viewer's browser test; emscripten and node-acorn build the
 # browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
 # software WebGL renderer bench/designer.mjs measures; Blender imports and plays
-# the glTF exports in tests/blender), then the npm packages of web/
+# the glTF exports in tests/blender; its glTF importer needs numpy, which
+# Debian's blender package does not depend on), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -16,7 +17,7 @@ packages=(
   catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
-  blender
+  blender python3-numpy
 )
 
 missing=()

@@ -216,6 +216,11 @@ TEST_CASE("bad input and bad usage: clear message, exit 2, unreadable file: exit
   CHECK(phedra_cli({"sample", presets + "/default.json"}).code == 2);
   CHECK(phedra_cli({"sample", presets + "/default.json", "--fraction", "2"}).code == 2);
   CHECK(phedra_cli({"check", presets + "/default.json", "--samples", "1"}).code == 2);
+  // --ease is a fraction of the animation at each end: at most a half.
+  const Run ease = phedra_cli({"generate", presets + "/default.json", "-o", (dir / "e.glb").string(), "--ease", "0.7"});
+  CHECK(ease.code == 2);
+  CHECK_THAT(ease.err, Contains("--ease"));
+  CHECK(!fs::exists(dir / "e.glb"));
   fs::remove_all(dir);
 }
 

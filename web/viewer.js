@@ -2,12 +2,13 @@
 // folding animation back and forth, and lets the user scrub, step, jump to t*
 // or a limit, type a t, change the speed, fit the view and save a picture.
 // The motion parameter t shown is the glTF time mapped back through the
-// export's extras (keyframe_t; time is linear in t between keyframes).
+// export's extras (time_map: time is linear in t but at the flexion limits).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
 import { Folds, foldColours } from './folds.js';
+import { tAtTime, timeOfT } from './time_map.js';
 import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox, readableNumbers } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
@@ -21,8 +22,10 @@ let gltf = null, mixer = null, action = null, info = {}, times = [], duration = 
 let position = 0, direction = 1, playing = true, box = null, outlines = { edges: 0, invalid: 0 };
 let folds = null, foldCounts = { mountains: 0, valleys: 0 }, foldsShownAt = -1, picked = -1, marker = null;
 
-/// t at animation time `seconds`: piecewise linear between keyframes.
+/// t at animation time `seconds`: by the file's time map (linear in t but at
+/// the flexion limits); older files: piecewise linear between keyframes.
 function tAt(seconds) {
+  if (info.time_map) return tAtTime(info.time_map, seconds);
   const ts = info.keyframe_t;
   if (seconds <= times[0]) return ts[0];
   for (let k = 1; k < times.length; ++k) {
@@ -33,6 +36,7 @@ function tAt(seconds) {
 
 /// The first animation time showing t (null when t is not animated).
 function timeOf(t) {
+  if (info.time_map) return timeOfT(info.time_map, t);
   const ts = info.keyframe_t;
   for (let k = 1; k < ts.length; ++k) {
     const a = ts[k - 1], b = ts[k];

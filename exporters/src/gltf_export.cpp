@@ -4,9 +4,11 @@
 #include "phedra/assembly_mesh.h"
 #include "phedra/errors.h"
 #include "phedra/panel_tree.h"
+#include "phedra/time_map.h"
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -154,14 +156,16 @@ void append_triangles(const Quad& q, std::vector<std::uint32_t>& out) {
   }
 }
 
-/// What an animation follows: a parameter u over [lo, hi] (the motion parameter t
-/// itself, or the position along the configuration curve), the Y-up mesh
-/// positions there, the t it stands for and its animation time.
+/// What an animation follows: a parameter u over [lo, hi], segment k of the
+/// time map (time_map.h) for u in [k, k + 1] with u - k the fraction of its time,
+/// the Y-up mesh positions there, the t it stands for and its animation time.
 struct MotionPath {
   double lo = 0.0, hi = 1.0;
   double rest = 0.0;                ///< u of the configuration at t* (the rest pose)
-  std::size_t minimum_keyframes = 2;  ///< evenly spread start keyframes needed (pass boundaries)
+  std::size_t minimum_keyframes = 2;  ///< evenly spread start keyframes needed (segment boundaries)
+  TimeMap time;
   std::function<Points(double)> positions;
+  std::function<Points(double)> positions_at_t;  ///< on the input branch (static exports)
   std::function<double(double)> t_of;
   std::function<double(double)> seconds_of;
 };
@@ -171,24 +175,72 @@ Points y_up(Points p) {
   return p;
 }
 
-/// t over the flexion interval: `seconds` from t_lambda to t_mu.
+/// A path over the segments of `time`, segment k on the branch `flipped[k]` (empty: the input branch).
+MotionPath segment_path(const Assembly& a, const AssemblyMesh& mesh, TimeMap time,
+                        std::vector<std::vector<bool>> flipped) {
+  auto map = std::make_shared<const TimeMap>(std::move(time));
+  auto branches = std::make_shared<const std::vector<std::vector<bool>>>(std::move(flipped));
+  MotionPath path;
+  path.time = *map;
+  path.lo = 0.0;
+  path.hi = static_cast<double>(map->segments.size());
+  path.minimum_keyframes = 2 * map->segments.size() + 1;
+  auto segment = [map](double u) {
+    return std::min(static_cast<std::size_t>(std::max(u, 0.0)), map->segments.size() - 1);
+  };
+  path.seconds_of = [map, segment](double u) {
+    const TimeSegment& s = map->segments[segment(u)];
+    const double phi = std::clamp(u - static_cast<double>(segment(u)), 0.0, 1.0);
+    return s.start + phi * (s.end - s.start);
+  };
+  path.t_of = [map, segment, seconds = path.seconds_of](double u) { return map->segments[segment(u)].t_at(seconds(u)); };
+  path.positions = [&a, &mesh, branches, segment, t_of = path.t_of](double u) {
+    AssemblyConfiguration c;
+    const std::vector<bool>& branch = (*branches)[segment(u)];
+    if (branch.empty()) {
+      a.evaluate(t_of(u), c);
+    } else {
+      a.evaluate(t_of(u), branch, c);
+    }
+    return y_up(mesh.positions(c));
+  };
+  path.positions_at_t = [&a, &mesh](double t) { return y_up(mesh.positions(a.evaluate(t))); };
+  return path;
+}
+
+/// Whether t is a flexion limit of the design (within rounding of the interval's width).
+bool at_flexion_limit(const Assembly& a, double t) {
+  const FlexionInterval& f = a.flexion_interval();
+  const double slack = 1e-12 * std::max(1.0, std::abs(f.upper.t - f.lower.t));
+  return std::abs(t - f.lower.t) <= slack || std::abs(t - f.upper.t) <= slack;
+}
+
+/// t over the flexion interval (or options.range): `seconds` from its start to
+/// its end, eased at the ends that are flexion limits.
 MotionPath interval_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
   const Assembly& a = design.assembly;
   const double lo = options.range ? options.range->first : a.flexion_interval().lower.t;
   const double hi = options.range ? options.range->second : a.flexion_interval().upper.t;
-  const double width = hi > lo ? hi - lo : 1.0;
-  MotionPath path;
-  path.lo = lo;
-  path.hi = hi;
-  path.rest = a.t_star();
-  path.positions = [&a, &mesh](double t) { return y_up(mesh.positions(a.evaluate(t))); };
-  path.t_of = [](double t) { return t; };
-  path.seconds_of = [lo, width, seconds = options.seconds](double t) { return (t - lo) / width * seconds; };
+  TimeSegment s;
+  s.start = 0.0;
+  s.end = options.seconds;
+  s.t0 = lo;
+  s.t1 = hi;
+  const double ease = options.ease * options.seconds;
+  s.ease0 = ease_at_end(at_flexion_limit(a, lo), ease, options.seconds);
+  s.ease1 = ease_at_end(at_flexion_limit(a, hi), ease, options.seconds);
+  TimeMap time;
+  time.segments = {s};
+  time.ping_pong = options.ping_pong;
+  MotionPath path = segment_path(a, mesh, time, {std::vector<bool>{}});
+  path.minimum_keyframes = 2;
+  path.rest = hi > lo ? std::clamp(s.seconds_at(a.t_star()) / options.seconds, 0.0, 1.0) : 0.0;
   return path;
 }
 
-/// The configuration curve (PHedron::configuration_cycle): pass k is u in [k, k+1]
-/// on its branch; each pass takes `seconds` times its share of the interval.
+/// The configuration curve (PHedron::configuration_cycle): pass k is segment k,
+/// on its branch, lasting `seconds` times its share of the interval, eased at
+/// the flexion limits where it turns.
 MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const GltfOptions& options) {
   const Assembly& a = design.assembly;
   if (options.static_t) throw InvalidInputError("--cycle", "a static export (--at) has no cycle");
@@ -196,41 +248,27 @@ MotionPath cycle_path(const Design& design, const AssemblyMesh& mesh, const Gltf
     throw InvalidInputError("--cycle", "the configuration curve runs through the flexion limits; it cannot be "
                                        "restricted to a sub-interval (--no-self-intersection)");
   }
-  auto passes = std::make_shared<std::vector<PHedron::Pass>>(a.base().configuration_cycle().passes);
+  const std::vector<PHedron::Pass>& passes = a.base().configuration_cycle().passes;
   const double width = a.flexion_interval().width();
-  auto start_seconds = std::make_shared<std::vector<double>>(1, 0.0);
-  for (const PHedron::Pass& p : *passes) {
-    start_seconds->push_back(start_seconds->back() + std::abs(p.to - p.from) / width * options.seconds);
+  TimeMap time;
+  time.ping_pong = options.ping_pong;
+  std::vector<std::vector<bool>> flipped;
+  double start = 0.0;
+  for (const PHedron::Pass& p : passes) {
+    TimeSegment s;
+    s.start = start;
+    s.end = start + std::abs(p.to - p.from) / width * options.seconds;
+    s.t0 = p.from;
+    s.t1 = p.to;
+    const double ease = options.ease * options.seconds;
+    s.ease0 = ease_at_end(at_flexion_limit(a, p.from), ease, s.end - s.start);
+    s.ease1 = ease_at_end(at_flexion_limit(a, p.to), ease, s.end - s.start);
+    time.segments.push_back(s);
+    flipped.push_back(p.flipped);
+    start = s.end;
   }
-  auto locate = [passes](double u, double& t) -> const PHedron::Pass& {
-    const std::size_t k = std::min(static_cast<std::size_t>(std::max(u, 0.0)), passes->size() - 1);
-    const PHedron::Pass& p = (*passes)[k];
-    const double s = u - static_cast<double>(k);
-    t = s >= 1.0 ? p.to : p.from + s * (p.to - p.from);
-    return p;
-  };
-  MotionPath path;
-  path.lo = 0.0;
-  path.hi = static_cast<double>(passes->size());
+  MotionPath path = segment_path(a, mesh, time, flipped);
   path.rest = 0.0;
-  path.minimum_keyframes = 2 * passes->size() + 1;
-  path.positions = [locate, &a, &mesh](double u) {
-    double t;
-    const PHedron::Pass& pass = locate(u, t);
-    AssemblyConfiguration c;
-    a.evaluate(t, pass.flipped, c);
-    return y_up(mesh.positions(c));
-  };
-  path.t_of = [locate](double u) {
-    double t;
-    locate(u, t);
-    return t;
-  };
-  path.seconds_of = [passes, start_seconds](double u) {
-    const std::size_t k = std::min(static_cast<std::size_t>(std::max(u, 0.0)), passes->size() - 1);
-    const double s = std::min(u - static_cast<double>(k), 1.0);
-    return (*start_seconds)[k] + s * ((*start_seconds)[k + 1] - (*start_seconds)[k]);
-  };
   return path;
 }
 
@@ -295,7 +333,7 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
     report.narrow_vertex_error = errors.narrow;
     report.narrow_seconds = errors.narrow_width / (path.hi - path.lo) * path.seconds_of(path.hi);
   }
-  const Points base = path.positions(options.static_t ? *options.static_t : path.rest);
+  const Points base = options.static_t ? path.positions_at_t(*options.static_t) : path.positions(path.rest);
   auto add_positions = [&](const std::vector<float>& data, bool with_bounds) {
     std::vector<double> lo3(3, INFINITY), hi3(3, -INFINITY);
     for (std::size_t k = 0; k < data.size(); ++k) {
@@ -438,6 +476,24 @@ tinygltf::Value to_value(const nlohmann::json& j) {
   return tinygltf::Value();
 }
 
+/// extras.phedra.time_map: how time maps to t (time_map.h, docs/formats.md).
+tinygltf::Value time_map_value(const TimeMap& time, double ease_seconds) {
+  auto pair = [](double a, double b) { return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(a), tinygltf::Value(b)}); };
+  tinygltf::Value::Array segments;
+  for (const TimeSegment& s : time.segments) {
+    tinygltf::Value::Object o;
+    o["seconds"] = pair(s.start, s.end);
+    o["t"] = pair(s.t0, s.t1);
+    o["ease_seconds"] = pair(s.ease0, s.ease1);
+    segments.push_back(tinygltf::Value(o));
+  }
+  tinygltf::Value::Object out;
+  out["ease_seconds"] = tinygltf::Value(ease_seconds);
+  out["segments"] = tinygltf::Value(segments);
+  out["ping_pong"] = tinygltf::Value(time.ping_pong);
+  return tinygltf::Value(out);
+}
+
 /// The node representation: one node per panel on a hinge spanning tree.
 void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& design, const AssemblyMesh& mesh,
                  const MotionPath& path, const GltfOptions& options, GltfReport& report,
@@ -461,7 +517,7 @@ void build_nodes(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   Keyframes keys;
   if (options.static_t) {
     keys.t = {*options.static_t};
-    keys.local = {tree.local_poses(path.positions(*options.static_t))};
+    keys.local = {tree.local_poses(path.positions_at_t(*options.static_t))};
   } else {
     KeyframeOptions keyframes = options.keyframes;
     keyframes.initial = std::max(keyframes.initial, path.minimum_keyframes);
@@ -670,6 +726,7 @@ std::string gltf_bytes(const Design& design, const GltfOptions& options, GltfRep
     }
     phedra["ping_pong"] = tinygltf::Value(options.ping_pong);
     phedra["keyframe_t"] = tinygltf::Value(keyframe_t);
+    phedra["time_map"] = time_map_value(path.time, options.ease * options.seconds);
     // Measured at 15 points of every keyframe interval (absolute, model units).
     phedra["max_vertex_error"] = tinygltf::Value(figures.max_vertex_error);
     phedra["max_vertex_error_t"] = tinygltf::Value(figures.vertex_error_t);

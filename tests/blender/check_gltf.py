@@ -85,8 +85,29 @@ def blender_to_preset(v):
 
 
 # The poses: every keyframe (exact, up to float32), and every whole frame a
-# user plays (24 fps), whose t follows from time being linear in t; those are
-# mostly between keyframes and must be within the file's vertex tolerance.
+# user plays (24 fps), whose t the file's time map gives (extras time_map:
+# linear in t but within ease seconds of a flexion limit, docs/formats.md);
+# those are mostly between keyframes and must be within the file's vertex tolerance.
+def eased_fraction(phi, e0, e1):
+    phi = min(max(phi, 0.0), 1.0)
+    k = 1.0 / (1.0 - 0.5 * e0 - 0.5 * e1)
+    if phi < e0:
+        return k * phi * phi / (2.0 * e0)
+    if phi > 1.0 - e1:
+        return 1.0 - k * (1.0 - phi) * (1.0 - phi) / (2.0 * e1)
+    return k * (phi - 0.5 * e0)
+
+
+def t_at(seconds):
+    for s in info["time_map"]["segments"]:
+        (start, end), (t0, t1), (e0, e1) = s["seconds"], s["t"], s["ease_seconds"]
+        if seconds <= end:
+            d = end - start
+            g = eased_fraction((seconds - start) / d, e0 / d, e1 / d) if d > 0 else 1.0
+            return t1 if g >= 1.0 else t0 + g * (t1 - t0)
+    return info["time_map"]["segments"][-1]["t"][1]
+
+
 forward = [0]
 for k in range(1, len(ts)):
     if ts[k] <= ts[k - 1]:
@@ -94,9 +115,13 @@ for k in range(1, len(ts)):
     forward.append(k)
 poses = [(frames[k], ts[k], 2e-5) for k in forward]
 if len(forward) > 1:
-    f0, f1, t0, t1 = frames[0], frames[forward[-1]], ts[0], ts[forward[-1]]
-    for frame in range(int(f0 // 1) + 1, int(f1 // 1)):
-        poses.append((float(frame), t0 + (frame - f0) / (f1 - f0) * (t1 - t0), tolerance + 2e-5))
+    if "time_map" not in info:
+        failures.append("the file has no time_map in its extras")
+    else:
+        f0, f1 = frames[0], frames[forward[-1]]
+        last = info["time_map"]["segments"][-1]["seconds"][1]
+        for frame in range(int(f0 // 1) + 1, int(f1 // 1)):
+            poses.append((float(frame), t_at((frame - f0) / (f1 - f0) * last), tolerance + 2e-5))
 if options["--poses"] and len(poses) > options["--poses"]:
     step = len(poses) / options["--poses"]
     poses = [poses[int(i * step)] for i in range(int(options["--poses"]))]

@@ -1,12 +1,13 @@
 // Loads a .glb with three.js (GLTFLoader + AnimationMixer), poses it at every
 // keyframe and halfway between every two, and compares the world positions of
-// every panel's vertices with `phedra sample` at the same t (time is linear in
-// t between keyframes). Exits 1 when a deviation exceeds the tolerance:
+// every panel's vertices with `phedra sample` at the t the file's time map
+// gives (extras.phedra.time_map: linear in t but at the flexion limits). Exits 1 when a deviation exceeds the tolerance:
 // float32 precision at keyframes, the file's vertex_tolerance (plus float32)
 // between them; relative to the model size.
 // usage: node tests/js/compare_three.mjs PHEDRA_BINARY PRESET FILE.glb [relative tolerance]
 import { readFile } from 'node:fs/promises';
 import { execFileSync } from 'node:child_process';
+import { tAtTime } from '../../web/time_map.js';
 
 // The same module instance GLTFLoader imports as 'three' (the package's "import" entry).
 const three = new URL('../../web/node_modules/three/', import.meta.url);
@@ -36,7 +37,10 @@ for (const k of forward) {
   // An interval already at the minimum spacing (next to a flexion limit) is held to what the file says of it.
   const narrow = times[k + 1] - times[k] < 2.0001 * (info.minimum_keyframe_spacing_seconds ?? 0);
   const allowed = narrow ? Math.max(between, (info.limit_vertex_error ?? 0) / size) : between;
-  if (k + 1 < forward.length) poses.push([null, 0.5 * (ts[k] + ts[k + 1]), allowed + Number(tol), k + 0.5]);
+  // Halfway in time; t from the file's time map (linear in t but at the flexion limits).
+  const middle = 0.5 * (times[k] + times[k + 1]);
+  const t = info.time_map ? tAtTime(info.time_map, middle) : 0.5 * (ts[k] + ts[k + 1]);
+  if (k + 1 < forward.length) poses.push([null, t, allowed + Number(tol), k + 0.5]);
 }
 const args = ['sample', preset];
 for (const [, t] of poses) args.push('--t', String(t));

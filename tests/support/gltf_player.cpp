@@ -54,6 +54,21 @@ std::vector<float> GltfPlayer::floats(int index) const {
   return out;
 }
 
+TimeMap GltfPlayer::time_map() const {
+  const tinygltf::Value& map = extras().Get("time_map");
+  if (!map.IsObject()) throw std::runtime_error("the file has no extras.phedra.time_map");
+  TimeMap out;
+  out.ping_pong = map.Get("ping_pong").Get<bool>();
+  const tinygltf::Value& segments = map.Get("segments");
+  for (std::size_t k = 0; k < segments.ArrayLen(); ++k) {
+    const tinygltf::Value& s = segments.Get(static_cast<int>(k));
+    auto at = [&](const char* key, int i) { return s.Get(key).Get(i).GetNumberAsDouble(); };
+    out.segments.push_back({at("seconds", 0), at("seconds", 1), at("t", 0), at("t", 1), at("ease_seconds", 0),
+                            at("ease_seconds", 1)});
+  }
+  return out;
+}
+
 double GltfPlayer::duration() const {
   double d = 0.0;
   for (const auto& [key, track] : tracks_) d = std::max(d, static_cast<double>(track.times.back()));

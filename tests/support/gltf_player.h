@@ -4,6 +4,7 @@
 // (LINEAR: lerp of translations and morph weights, slerp of rotations) and
 // gives every mesh vertex's position, independently of the exporter's code.
 
+#include "phedra/time_map.h"
 #include "phedra/vector_types.h"
 
 #include <tiny_gltf.h>
@@ -21,6 +22,8 @@ class GltfPlayer {
 
   const tinygltf::Model& model() const { return model_; }
   const tinygltf::Value& extras() const { return model_.asset.extras.Get("phedra"); }
+  /// How the file says its time maps to t (extras.phedra.time_map, docs/formats.md).
+  TimeMap time_map() const;
   /// The last keyframe's time (0 for a static file).
   double duration() const;
   /// Every mesh vertex (glTF frame, Y-up) at animation time `seconds`, indexed as

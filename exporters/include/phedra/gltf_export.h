@@ -8,7 +8,8 @@
 //   motion as node rotations (and translations of the tree roots); panels stay
 //   exactly rigid between keyframes (small models).
 // Keyframes are chosen so that, between two of them, every vertex stays within
-// a tolerance of the exact configuration at the same t (time linear in t), and
+// a tolerance of the exact configuration at the same time (t from time by the
+// time map stored in the file, time_map.h: linear but at the flexion limits), and
 // (nodes) no hinge outside the tree opens by more. Y-up: glTF (x, y, z) = preset (x, z, -y).
 
 #include "phedra/design.h"
@@ -27,6 +28,12 @@ struct GltfOptions {
   bool binary = true;                 ///< .glb (true) or .gltf with an embedded buffer
   double seconds = 4.0;               ///< duration of t_lambda -> t_mu
   bool ping_pong = false;             ///< play t_lambda -> t_mu -> t_lambda
+  /// Fraction of `seconds` eased at each end that is a flexion limit (time_map.h):
+  /// there t's distance from the limit grows as the square of time, so that the
+  /// motion, which moves as the square root of that distance, keeps a bounded
+  /// speed. 0: time linear in t throughout (then the keyframe intervals touching
+  /// a limit can stay above the tolerance: reported as narrow_vertex_error).
+  double ease = 1.0 / 16.0;
   /// Animate the whole configuration curve through the flexion limits
   /// (PHedron::configuration_cycle: t* -> t_mu -> ... -> t*, strips switching
   /// branch at the limits; an array's members follow its base). Each pass takes
