@@ -14,6 +14,9 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#ifndef __EMSCRIPTEN__
+#include <thread>
+#endif
 
 namespace phedra {
 namespace {
@@ -79,17 +82,18 @@ std::string face_name(const Assembly& a, const AssemblyMesh& mesh, std::size_t f
 
 /// The largest distance, at the fractions `at` of [a, b], of the vertices as
 /// linear interpolation between the keyframes places them from their exact
-/// places at the same t; `where` gets the t.
+/// places at the same u; `where` gets the u. `keep` (if any) gets the positions at 1/2.
 double chord_error(const std::function<Points(double)>& positions, double a, const Points& pa, double b,
-                   const Points& pb, std::initializer_list<double> at, double& where) {
+                   const Points& pb, std::initializer_list<double> at, double& where, Points* keep = nullptr) {
   double error = 0.0;
   for (double s : at) {
     const double t = a + s * (b - a);
-    const Points truth = positions(t);
+    Points truth = positions(t);
     for (std::size_t v = 0; v < truth.size(); ++v) {
       const double d = ((1 - s) * pa[v] + s * pb[v] - truth[v]).norm();
       if (d > error) error = d, where = t;
     }
+    if (keep && s == 0.5) *keep = std::move(truth);
   }
   return error;
 }
@@ -102,42 +106,85 @@ struct MorphErrors {
   double narrow = 0.0, narrow_width = 0.0;  ///< over intervals left above the tolerance at the minimum spacing
 };
 
+/// Calls work(i) for i in [0, n), on two threads for large models (not in
+/// WebAssembly, built without threads); `work` must be safe to run concurrently.
+void for_each_index(std::size_t n, bool large, const std::function<void(std::size_t)>& work) {
+#ifndef __EMSCRIPTEN__
+  if (large && n > 1) {
+    std::exception_ptr failure;
+    std::thread second([&] {
+      try {
+        for (std::size_t i = 1; i < n; i += 2) work(i);
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    try {
+      for (std::size_t i = 0; i < n; i += 2) work(i);
+    } catch (...) {
+      second.join();
+      throw;
+    }
+    second.join();
+    if (failure) std::rethrow_exception(failure);
+    return;
+  }
+#endif
+  for (std::size_t i = 0; i < n; ++i) work(i);
+}
+
 std::map<double, Points> morph_keyframes(const std::function<Points(double)>& positions, double lo, double hi,
                                           double tolerance, std::size_t initial, std::size_t maximum,
-                                          double minimum_spacing, MorphErrors& errors,
+                                          double minimum_spacing, bool large, MorphErrors& errors,
                                           const KeyframeProgress& progress) {
   std::map<double, Points> frames;
-  for (double t : interval_samples(lo, hi, std::min(initial, maximum))) frames[t] = positions(t);
+  const std::vector<double> start = interval_samples(lo, hi, std::min(initial, maximum));
+  std::vector<Points> first(start.size());
+  for_each_index(start.size(), large, [&](std::size_t k) { first[k] = positions(start[k]); });
+  for (std::size_t k = 0; k < start.size(); ++k) frames[start[k]] = std::move(first[k]);
   std::vector<std::pair<double, double>> pending;
   for (auto it = frames.begin(); std::next(it) != frames.end(); ++it) pending.push_back({it->first, std::next(it)->first});
   double settled = 0.0;
+  // An interval's verdict: its error (at 1/4, 1/2, 3/4, then, when within the
+  // tolerance there, at the other k/16) and the positions at its middle.
+  struct Verdict {
+    double error = 0.0, where = 0.0;
+    Points middle;
+  };
   while (!pending.empty()) {
-    std::vector<std::pair<double, double>> next;
-    for (const auto& [a, b] : pending) {
+    std::vector<Verdict> verdicts(pending.size());
+    for_each_index(pending.size(), large, [&](std::size_t i) {
+      const auto [a, b] = pending[i];
       const Points& pa = frames.at(a);
       const Points& pb = frames.at(b);
-      double where = a;
-      double error = chord_error(positions, a, pa, b, pb, {0.25, 0.5, 0.75}, where);
-      if (error <= tolerance) {
-        error = chord_error(positions, a, pa, b, pb,
-                            {1 / 16., 2 / 16., 3 / 16., 4 / 16., 5 / 16., 6 / 16., 7 / 16., 8 / 16., 9 / 16., 10 / 16.,
-                             11 / 16., 12 / 16., 13 / 16., 14 / 16., 15 / 16.},
-                            where);
+      Verdict& v = verdicts[i];
+      v.where = a;
+      v.error = chord_error(positions, a, pa, b, pb, {0.25, 0.5, 0.75}, v.where, &v.middle);
+      if (v.error <= tolerance) {
+        v.error = std::max(v.error, chord_error(positions, a, pa, b, pb,
+                                                {1 / 16., 2 / 16., 3 / 16., 5 / 16., 6 / 16., 7 / 16., 9 / 16.,
+                                                 10 / 16., 11 / 16., 13 / 16., 14 / 16., 15 / 16.},
+                                                v.where));
       }
+    });
+    std::vector<std::pair<double, double>> next;
+    for (std::size_t i = 0; i < pending.size(); ++i) {
+      const auto [a, b] = pending[i];
+      Verdict& v = verdicts[i];
       const double mid = 0.5 * (a + b);
       const bool wide = b - a >= 2.0 * minimum_spacing * (hi - lo);
-      if (error > tolerance && wide && mid > a && mid < b && frames.size() < maximum) {
-        frames[mid] = positions(mid);
+      if (v.error > tolerance && wide && mid > a && mid < b && frames.size() < maximum) {
+        frames[mid] = std::move(v.middle);
         next.push_back({a, mid});
         next.push_back({mid, b});
       } else {
         settled += b - a;
-        if (!wide && error > tolerance) {
-          errors.narrow = std::max(errors.narrow, error);
+        if (!wide && v.error > tolerance) {
+          errors.narrow = std::max(errors.narrow, v.error);
           errors.narrow_width += b - a;
-        } else if (error > errors.worst) {
-          errors.worst = error;
-          errors.worst_t = where;
+        } else if (v.error > errors.worst) {
+          errors.worst = v.error;
+          errors.worst_t = v.where;
         }
       }
       if (progress) progress(settled / (hi - lo), frames.size());
@@ -324,10 +371,13 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   std::map<double, Points> frames;
   if (!options.static_t) {
     MorphErrors errors;
+    const bool large = mesh.vertices.size() >= 2000;
+    if (large) assembly.shared_vertices();  // evaluate() is thread-safe once they are known
     frames = morph_keyframes(path.positions, path.lo, path.hi, options.keyframes.relative_tolerance * assembly.model_size(),
                              std::max(options.keyframes.initial, path.minimum_keyframes),
                              std::min(options.max_morph_targets, options.keyframes.maximum),
-                             options.keyframes.minimum_spacing, errors, options.progress);
+                             options.keyframes.minimum_spacing, large, errors,
+                             options.progress);
     report.max_vertex_error = errors.worst;
     report.vertex_error_t = errors.worst_t;
     report.narrow_vertex_error = errors.narrow;
