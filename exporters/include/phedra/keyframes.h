@@ -1,8 +1,9 @@
 #pragma once
 // Keyframes for the node animation: the panels' local poses at chosen t, so
 // that interpolating them (slerp of rotations, lerp of root translations) never
-// puts a vertex further than a tolerance from its exact place at the same t
-// (time linear in t), nor opens a hinge outside the tree (or a vertex shared
+// puts a vertex further than a tolerance from its exact place at the same
+// animation time (the parameter here is time-like: the glTF exporter passes the
+// time map's segment parameter, time_map.h), nor opens a hinge outside the tree (or a vertex shared
 // between members) by more. Intervals are split at their midpoint until both
 // measured at 1/4, 1/2 and 3/4 of every interval are within the tolerance; then
 // every interval is measured again at 15 points (k/16) and split where needed.
@@ -23,9 +24,10 @@ struct KeyframeOptions {
   std::size_t maximum = 4000;
   /// No two keyframes closer than this fraction of [lo, hi] (0.8 ms of a 4 s
   /// animation, 0.02 frame at 24 fps: Blender merges keyframes closer than 0.01
-  /// frame, and float32 times cannot tell them apart). Next to a flexion limit
-  /// the motion moves as the square root of the distance to the limit, so the
-  /// interval touching it may stay above the tolerance: reported apart.
+  /// frame, and float32 times cannot tell them apart). With time linear in t
+  /// next to a flexion limit (--ease 0) the motion moves as the square root of
+  /// the distance to the limit, so the interval touching it may stay above the
+  /// tolerance: reported apart.
   double minimum_spacing = 2e-4;
 };
 
