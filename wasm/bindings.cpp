@@ -78,11 +78,13 @@ class Designer {
   /// A keep-buildable drag step (issue 14): as set, then the rest of the design
   /// (its apex heights) projected onto the designs whose panels are all simple
   /// and whose t* is free of collisions, the held entry staying where the pointer
-  /// put it, within `budget_ms`. When no such design is found in time, the held
+  /// put it, within `budget_ms` (cheap first: the drag's last projected step
+  /// continued, the held height's neighbours following it; KeepBuildableDrag).
+  /// When no such design is found in time, the held
   /// entry moves towards the pointer only as far as the design stays buildable
   /// at t* (bisection), like a handle against a wall. The motion over the whole
   /// interval is for the page to check when the hand stops. {ok: true,
-  /// projected, clamped, evaluations} or {ok: false, field, message} (a refused
+  /// projected, clamped, evaluations, how} or {ok: false, field, message} (a refused
   /// value: the previous design stays).
   val keep(const std::string& key, int index, double x, double y, double z, double budget_ms) {
     if (!design_) return failure("", "no design loaded");
@@ -96,9 +98,8 @@ class Designer {
     try {
       *entry = wanted;
       ProjectionOptions options;
-      options.fixed = {pointer};
       options.max_seconds = budget_ms / 1000.0;
-      std::optional<Projection> p = project_buildable(document_, options);
+      std::optional<Projection> p = drag_.step(document_, pointer, previous, options);
       bool clamped = false;
       std::size_t evaluations = p ? p->evaluations : 0;
       if (!p) {
@@ -125,6 +126,7 @@ class Designer {
       v.set("projected", p ? p->moved : false);
       v.set("clamped", clamped);
       v.set("evaluations", static_cast<double>(evaluations));
+      v.set("how", p ? p->how : std::string("clamped"));
       return v;
     } catch (const InvalidInputError& e) {
       *entry_at(key, index) = previous;
@@ -456,6 +458,7 @@ class Designer {
 
   std::optional<Design> design_;
   nlohmann::json document_;  ///< the preset of design_
+  KeepBuildableDrag drag_;  ///< keep(): continues the last step's projection
   AssemblyMesh mesh_;
   AssemblyConfiguration configuration_;
   std::vector<double> positions_;

@@ -5,7 +5,7 @@
 // CLI's, and a saved preset gives the same `phedra sample` result.
 import * as THREE from 'three';
 import { createStage } from './scene.js';
-import { frameBox, groundGrid, readableNumbers } from './framing.js';
+import { clampToCore, frameBox, groundGrid, readableNumbers } from './framing.js';
 import { foldAngle, foldColours, hingesOf } from './folds.js';
 import createPhedra from './wasm/phedra.mjs';
 
@@ -164,20 +164,26 @@ function followTStar(before) {
 /// Everything the design shows over its whole motion (the surface at 9 t across
 /// the flexion interval), or at the slider's t only (`motion` false), and the handles.
 function designBox(motion = true) {
-  const box = new THREE.Box3(), v = new THREE.Vector3();
-  for (const f of motion ? [0, 1, 2, 3, 4, 5, 6, 7, 8].map((k) => k / 8) : [fraction]) {
-    const x = designer.evaluate(tOf(f));
-    if (x.ok === false) continue;
-    for (let i = 0; i + 2 < x.length; i += 3) box.expandByPoint(v.set(x[i], x[i + 1], x[i + 2]));
-  }
+  const v = new THREE.Vector3();
+  const surfaceAt = (fractions, box) => {
+    for (const f of fractions) {
+      const x = designer.evaluate(tOf(f));
+      if (x.ok === false) continue;
+      for (let i = 0; i + 2 < x.length; i += 3) box.expandByPoint(v.set(x[i], x[i + 1], x[i + 2]));
+    }
+    return box;
+  };
+  const core = surfaceAt([fraction], new THREE.Box3());
   for (const mesh of Object.values(handleMeshes)) {
     const m = new THREE.Matrix4();
     for (let k = 0; k < mesh.count; ++k) {
       mesh.getMatrixAt(k, m);
-      box.expandByPoint(v.setFromMatrixPosition(m));
+      core.expandByPoint(v.setFromMatrixPosition(m));
     }
   }
-  return box;
+  if (!motion) return core;
+  // Over the motion, but not out to where a vertex passes near infinity.
+  return clampToCore(surfaceAt([0, 1, 2, 3, 4, 5, 6, 7, 8].map((k) => k / 8), core.clone()), core);
 }
 /// Frames the design over its motion (Fit view, f), or as shown at the slider's
 /// t (Fit t, Shift+F: larger, for editing), in the part of the canvas the panel leaves free.
@@ -198,15 +204,21 @@ function fitView({ motion = true } = {}) {
   frameBox(camera, controls, box, { left: panel.right + 8, width: canvas.clientWidth, height: canvas.clientHeight });
   requestRender();
 }
-/// Refits when an edit took the shown surface out of the view (never while dragging).
+/// Refits when an edit took the shown surface out of the view, or left it a
+/// speck in it (under a twentieth of the view each way: another design loaded
+/// into a view framed for a much larger one); never while dragging.
 function refitIfOutside() {
   if (drag || !framed) return;
   surface.geometry.computeBoundingBox();
   const b = surface.geometry.boundingBox, corner = new THREE.Vector3();
+  const seen = new THREE.Box2();
   for (const x of [b.min.x, b.max.x]) for (const y of [b.min.y, b.max.y]) for (const z of [b.min.z, b.max.z]) {
     corner.set(x, y, z).project(camera);
     if (Math.abs(corner.x) > 1 || Math.abs(corner.y) > 1 || corner.z > 1) { fitView(); return; }
+    seen.expandByPoint(new THREE.Vector2(corner.x, corner.y));
   }
+  const size = seen.getSize(new THREE.Vector2());
+  if (size.x < 0.1 && size.y < 0.1) fitView();
 }
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLTextAreaElement || e.target instanceof HTMLInputElement) return;
@@ -625,6 +637,11 @@ function updateLabels() {
   $('tstar').textContent = format(info.t_star);
   const star = (info.t_star - info.t_lambda) / (info.t_mu - info.t_lambda);
   $('tstarmark').style.left = `calc(8px + ${star.toFixed(4)} * (100% - 16px))`;
+  const ticks = $('tstarmark').parentElement;
+  ticks.classList.remove('crowded');
+  const mark = $('tstarmark').getBoundingClientRect();
+  const overlaps = (r) => r.left < mark.right + 4 && mark.left < r.right + 4;
+  if (overlaps($('lo').getBoundingClientRect()) || overlaps($('hi').getBoundingClientRect())) ticks.classList.add('crowded');
 }
 
 /// Everything the panel shows: the labels, the preset's text, mode and signs.

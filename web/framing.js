@@ -45,6 +45,16 @@ export function motionBox(object, setTime, times) {
   return box;
 }
 
+/// `box` (a motion's) limited to `core` (the pose at rest) grown by `factor`
+/// times the core's diagonal on every side: a motion that passes near infinity
+/// (a vertex sent far out next to a flexion limit) would otherwise frame the
+/// model as a dot under a grid of kilometre cells.
+export function clampToCore(box, core, factor = 2) {
+  if (core.isEmpty() || box.isEmpty()) return box;
+  const reach = factor * core.getSize(new THREE.Vector3()).length();
+  return box.clone().intersect(core.clone().expandByScalar(reach));
+}
+
 /// Puts the camera so that `box` fills the view, looking from its current
 /// direction (or a three-quarter view when it has none). `left`: pixels on the
 /// left that a panel covers: the view is centred in the rest of the canvas.

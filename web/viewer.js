@@ -9,7 +9,7 @@ import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
 import { Folds, foldColours } from './folds.js';
 import { tAtTime, timeOfT } from './time_map.js';
-import { expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox, readableNumbers } from './framing.js';
+import { clampToCore, expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox, readableNumbers } from './framing.js';
 
 const $ = (id) => document.getElementById(id);
 const { renderer, scene, camera, controls } = createStage();
@@ -288,6 +288,7 @@ function showModel(loaded) {
     const every = Math.max(1, Math.ceil(times.length / 64));
     box = motionBox(gltf.scene, setTime, times.filter((_, k) => k % every === 0 || k === times.length - 1));
     show(timeOf(info.t_star) ?? 0);
+    box = clampToCore(box, expandByShownVertices(new THREE.Box3(), gltf.scene));
   } else {
     box = expandByShownVertices(new THREE.Box3(), gltf.scene);
     for (const id of timelineControls) $(id).disabled = true;

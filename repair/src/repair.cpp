@@ -339,16 +339,54 @@ std::vector<FieldChange> changes_between(const json& before, const json& after, 
   return out;
 }
 
-}  // namespace
-
-bool buildable_at_t_star(const Design& design) {
+/// Every panel a simple quad (MATH.md section 9).
+bool all_panels_simple(const Design& design) {
   const Assembly& a = design.assembly;
   for (std::size_t m = 0; m < a.member_count(); ++m) {
     for (std::size_t f = 0; f < a.topology(m).face_count(); ++f) {
       if (!(shape_margin(panel_nets(a, m, f)) > 0.0)) return false;
     }
   }
-  return !self_intersection_at_t_star(design);
+  return true;
+}
+
+/// The variables' displacement when the held apex height's neighbours at
+/// `offsets` (in its own list of heights) move by `change`, the others stay
+/// (empty when the held field is no apex height or has no such neighbour).
+std::vector<double> neighbour_line(const DesignVariables& variables, const std::vector<int>& offsets, double change) {
+  const std::vector<DesignVariable>& v = variables.variables();
+  // "apex_heights[3]" / "tube.apex_heights[3]" -> ("apex_heights", 3)
+  auto split = [](const std::string& field, std::string& list, long& index) {
+    const std::size_t open = field.rfind('[');
+    if (open == std::string::npos || field.back() != ']' || field.find("apex_heights") == std::string::npos) return false;
+    list = field.substr(0, open);
+    index = std::stol(field.substr(open + 1, field.size() - open - 2));
+    return field.find('[') == open;  // one index: a height, not a point's coordinate
+  };
+  std::string held_list;
+  long held = -1;
+  for (const DesignVariable& d : v) {
+    if (d.fixed && split(d.field, held_list, held)) break;
+    held = -1;
+  }
+  if (held < 0) return {};
+  std::vector<double> out(v.size(), 0.0);
+  bool any = false;
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    std::string list;
+    long index = 0;
+    if (v[k].fixed || !split(v[k].field, list, index) || list != held_list) continue;
+    if (std::find(offsets.begin(), offsets.end(), static_cast<int>(index - held)) == offsets.end()) continue;
+    out[k] = change;
+    any = true;
+  }
+  return any ? out : std::vector<double>{};
+}
+
+}  // namespace
+
+bool buildable_at_t_star(const Design& design) {
+  return all_panels_simple(design) && !self_intersection_at_t_star(design);
 }
 
 std::optional<Projection> project_buildable(const json& preset, const ProjectionOptions& options) {
@@ -356,8 +394,10 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   Projection out;
   const Design input = design_from_json(preset);
   ++out.evaluations;
-  if (buildable_at_t_star(input)) {
+  const bool simple = all_panels_simple(input);  // (the collision check at t* costs far more: only then)
+  if (simple && !self_intersection_at_t_star(input)) {
     out.preset = preset;
+    out.how = "already";
     return out;
   }
   RepairOptions search;
@@ -372,9 +412,60 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   }
   std::size_t panels = 0;
   for (std::size_t m = 0; m < input.assembly.member_count(); ++m) panels += input.assembly.topology(m).face_count();
-  Problem problem(*variables, search, panels, input.assembly.model_size());
   const std::vector<double> x0 = variables->start();
   auto left = [&] { return options.max_seconds - seconds_since(start); };
+  // Lines from x0 whose far end may be buildable: the drag's last displacement,
+  // then the held height's neighbours following it.
+  std::vector<std::pair<std::string, std::vector<double>>> lines;
+  if (options.continue_along.size() == variables->size()) lines.push_back({"continued", options.continue_along});
+  if (options.held_change != 0.0) {
+    for (const std::vector<int>& offsets : std::vector<std::vector<int>>{{-1}, {1}, {-1, 1}, {-2, -1, 1, 2}}) {
+      std::vector<double> d = neighbour_line(*variables, offsets, options.held_change);
+      if (!d.empty()) lines.push_back({"neighbours", std::move(d)});
+    }
+  }
+  // Panel shapes along a line are cheap; the collision check at t* is done at
+  // the point chosen on it only.
+  auto design_at = [&](const std::vector<double>& d, double lambda) -> std::optional<Design> {
+    std::vector<double> x = x0;
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] += lambda * d[k];
+    ++out.evaluations;
+    try {
+      return design_from_json(variables->preset_at(x));
+    } catch (const Error&) {
+      return std::nullopt;
+    }
+  };
+  // The design at lambda on line d when its panels are all simple.
+  auto simple_at = [&](const std::vector<double>& d, double lambda) {
+    std::optional<Design> design = design_at(d, lambda);
+    if (design && !all_panels_simple(*design)) design.reset();
+    return design;
+  };
+  for (const auto& [how, d] : lines) {
+    if (left() <= 0.0) break;
+    std::optional<Design> chosen = simple_at(d, 1.0);
+    if (!chosen) continue;
+    double good = 1.0, bad = 0.0;
+    for (int step = 0; step < 3 && left() > 0.0; ++step) {
+      const double middle = 0.5 * (good + bad);
+      if (std::optional<Design> nearer = simple_at(d, middle)) {
+        good = middle;
+        chosen.emplace(std::move(*nearer));
+      } else {
+        bad = middle;
+      }
+    }
+    if (self_intersection_at_t_star(*chosen)) continue;
+    std::vector<double> x = x0;
+    out.displacement.assign(x.size(), 0.0);
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] += (out.displacement[k] = good * d[k]);
+    out.preset = variables->preset_at(x);
+    out.moved = true;
+    out.how = how;
+    return out;
+  }
+  Problem problem(*variables, search, panels, input.assembly.model_size());
   problem.set_mode(ShapeMode::positive_net, false, 1.0);
   std::vector<double> x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
   problem.set_mode(ShapeMode::exact, false, 1.0);
@@ -385,8 +476,30 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   if (total_violation(problem, x) > 0.0) return std::nullopt;
   out.preset = variables->preset_at(x);
   out.moved = true;
+  out.how = "search";
+  out.displacement.assign(x.size(), 0.0);
+  for (std::size_t k = 0; k < x.size(); ++k) out.displacement[k] = x[k] - x0[k];
   if (!buildable_at_t_star(design_from_json(out.preset))) return std::nullopt;
   return out;
+}
+
+std::optional<Projection> KeepBuildableDrag::step(const json& preset, const std::string& held, const json& previous,
+                                                  ProjectionOptions options) {
+  const json& now = preset.at(json::json_pointer(held));
+  const double change = now.is_number() && previous.is_number() ? now.get<double>() - previous.get<double>() : 0.0;
+  options.fixed = {held};
+  options.held_change = change;
+  options.continue_along.clear();
+  if (held == held_ && !displacement_.empty()) {
+    const double ratio = change != 0.0 && change_ != 0.0 ? change / change_ : 1.0;
+    for (double d : displacement_) options.continue_along.push_back(ratio * d);
+  }
+  held_ = held;
+  change_ = change;
+  displacement_.clear();
+  std::optional<Projection> p = project_buildable(preset, options);
+  if (p && p->moved) displacement_ = p->displacement;
+  return p;
 }
 
 json named_result(const json& result, const std::string& input_name, const std::string& vary, const RepairResult& r) {

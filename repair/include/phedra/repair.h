@@ -84,12 +84,23 @@ struct ProjectionOptions {
   std::vector<std::string> fixed;  ///< the held handle's field (JSON pointer)
   std::size_t max_evaluations = 200;
   double max_seconds = 0.012;      ///< within a 60 Hz frame with the redraw
+  /// A drag continues: how the previous step moved the varied fields
+  /// (Projection::displacement, scaled to this step), tried first.
+  std::vector<double> continue_along;
+  /// How far the held field moved in this step when it is one number (an apex
+  /// height; 0: unknown): its neighbours moving along with it are tried next.
+  double held_change = 0.0;
 };
 
 struct Projection {
   nlohmann::json preset;   ///< the design to show
   bool moved = false;      ///< other fields than the held one changed
   std::size_t evaluations = 0;
+  /// How the varied fields moved (DesignVariables order, the held one 0): for
+  /// the next step's continue_along.
+  std::vector<double> displacement;
+  /// How it was found: "already", "continued", "neighbours", "search".
+  std::string how;
 };
 
 /// Every panel simple and the configuration at t* free of collisions: what a
@@ -100,8 +111,30 @@ bool buildable_at_t_star(const Design& design);
 /// and t* is free of collisions, else the nearest such design changing only
 /// `vary` but not the held fields, found within the budget (the motion over
 /// the interval is checked when the hand stops); nullopt when none was found.
+/// Cheap first (a drag's steps are small and alike): along the previous step's
+/// displacement, then with the held height's neighbours moving along (one
+/// side, the other, both, two a side); on the first such line that reaches a
+/// buildable design, the nearest point of it (bisection, 1/8 of the line).
+/// Then, with time left, the optimizer as repair's shape stage.
 /// InvalidInputError when `preset` does not build.
 std::optional<Projection> project_buildable(const nlohmann::json& preset, const ProjectionOptions& options = {});
+
+/// The steps of one keep-buildable drag: each is project_buildable of the
+/// preset with the held field moved, continuing along the last projected
+/// step's displacement (scaled by how far the held number moved now against
+/// then). A step that needed no projection, or found none, ends the continuation.
+class KeepBuildableDrag {
+ public:
+  /// `preset` has the held field (JSON pointer `held`) at its new value; it was
+  /// `previous` (a number or a point) before this step. As project_buildable.
+  std::optional<Projection> step(const nlohmann::json& preset, const std::string& held, const nlohmann::json& previous,
+                                 ProjectionOptions options = {});
+
+ private:
+  std::string held_;
+  std::vector<double> displacement_;
+  double change_ = 0.0;
+};
 
 /// `result` (a repaired or closest preset) named after the input: "NAME-repaired"
 /// (or "NAME-closest" when `found` is false) with a description saying what was
