@@ -447,7 +447,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
     std::optional<Design> chosen = simple_at(d, 1.0);
     if (!chosen) continue;
     double good = 1.0, bad = 0.0;
-    for (int step = 0; step < 3 && left() > 0.0; ++step) {
+    for (int step = 0; step < 2 && left() > 0.0; ++step) {
       const double middle = 0.5 * (good + bad);
       if (std::optional<Design> nearer = simple_at(d, middle)) {
         good = middle;

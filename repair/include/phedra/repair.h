@@ -114,7 +114,7 @@ bool buildable_at_t_star(const Design& design);
 /// Cheap first (a drag's steps are small and alike): along the previous step's
 /// displacement, then with the held height's neighbours moving along (one
 /// side, the other, both, two a side); on the first such line that reaches a
-/// buildable design, the nearest point of it (bisection, 1/8 of the line).
+/// buildable design, the nearest point of it (bisection, 1/4 of the line).
 /// Then, with time left, the optimizer as repair's shape stage.
 /// InvalidInputError when `preset` does not build.
 std::optional<Projection> project_buildable(const nlohmann::json& preset, const ProjectionOptions& options = {});
