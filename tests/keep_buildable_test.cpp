@@ -93,3 +93,52 @@ TEST_CASE("keep-buildable drag: a step that needs no projection costs one design
   CHECK(!p->moved);
   CHECK(p->evaluations == 1);
 }
+
+TEST_CASE("keep-buildable drag of a trajectory point: its neighbours follow it (a soft selection), 1000 panels",
+          "[repair][keep]") {
+  // On the dense helix a point moved by about one segment reverses a segment:
+  // no apex height can undo that, the neighbouring points following can.
+  const json original = load("helix-126.json");
+  json design = original;
+  KeepBuildableDrag drag;
+  ProjectionOptions options;
+  options.max_seconds = 1e9;  // counted, not timed
+  const std::size_t held = 60;
+  std::size_t projected = 0, worst = 0;
+  for (int k = 1; k <= 25; ++k) {
+    CAPTURE(k);
+    const json previous = design["trajectory"][held];
+    json moved = design;
+    json wanted = original["trajectory"][held];
+    wanted[0] = wanted[0].get<double>() + 0.02 * k;
+    wanted[1] = wanted[1].get<double>() + 0.02 * k;
+    moved["trajectory"][held] = wanted;
+    const std::optional<Projection> p = drag.step(moved, "/trajectory/60", previous, options);
+    REQUIRE(p);
+    CHECK(p->preset["trajectory"][held] == wanted);
+    CHECK(simple_and_free(p->preset));
+    CHECK(p->preset["apex_heights"] == original["apex_heights"]);
+    // Not much larger than the held point's own move makes the design (a quarter at most).
+    json own = original;
+    own["trajectory"][held] = wanted;
+    CHECK(design_from_json(p->preset).assembly.model_size() <=
+          1.25 * std::max(design_from_json(original).assembly.model_size(), design_from_json(own).assembly.model_size()));
+    CHECK(p->preset["directions"] == original["directions"]);
+    // Only points within the largest window (32 a side) move, each by at most the held point's move.
+    for (std::size_t i = 0; i < original["trajectory"].size(); ++i) {
+      const bool near = (i > held ? i - held : held - i) <= 32;
+      for (int c = 0; c < 3; ++c) {
+        const double d = std::abs(p->preset["trajectory"][i][c].get<double>() - original["trajectory"][i][c].get<double>());
+        CHECK(d <= (near ? 0.02 * k + 1e-12 : 0.0));
+      }
+    }
+    if (p->moved) {
+      ++projected;
+      CHECK(p->how == "trajectory");
+      worst = std::max(worst, p->evaluations);
+    }
+    design = p->preset;
+  }
+  CHECK(projected >= 15);
+  CHECK(worst <= 16);
+}

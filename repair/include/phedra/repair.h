@@ -90,6 +90,16 @@ struct ProjectionOptions {
   /// How far the held field moved in this step when it is one number (an apex
   /// height; 0: unknown): its neighbours moving along with it are tried next.
   double held_change = 0.0;
+  /// The preset when the drag began: for a held trajectory point, the points
+  /// next to it following its move since then are tried (a soft selection over
+  /// windows of 1, 2, 4, ... 32 points a side, a tent falloff), from
+  /// `first_window` (an index into those: the one the drag's last step used).
+  nlohmann::json drag_origin;
+  int first_window = 0;
+  /// A projected design may not be larger than this (model size; 0: 1.5 times
+  /// the input's): a trajectory edge turned nearly into its profile plane sends
+  /// the axial net far out while every panel stays simple.
+  double size_limit = 0.0;
 };
 
 struct Projection {
@@ -99,8 +109,9 @@ struct Projection {
   /// How the varied fields moved (DesignVariables order, the held one 0): for
   /// the next step's continue_along.
   std::vector<double> displacement;
-  /// How it was found: "already", "continued", "neighbours", "search".
+  /// How it was found: "already", "continued", "neighbours", "trajectory", "search".
   std::string how;
+  int window = -1;  ///< "trajectory": the index of the window of points that followed
 };
 
 /// Every panel simple and the configuration at t* free of collisions: what a
@@ -113,7 +124,10 @@ bool buildable_at_t_star(const Design& design);
 /// the interval is checked when the hand stops); nullopt when none was found.
 /// Cheap first (a drag's steps are small and alike): along the previous step's
 /// displacement, then with the held height's neighbours moving along (one
-/// side, the other, both, two a side); on the first such line that reaches a
+/// side, the other, both, two a side), or a held trajectory point's neighbours
+/// following its move since the drag began (drag_origin; they are not among
+/// the varied fields, the line moves them nonetheless: a dense trajectory has
+/// no other way out of a reversed segment); on the first such line that reaches a
 /// buildable design, the nearest point of it (bisection, 1/4 of the line).
 /// Then, with time left, the optimizer as repair's shape stage.
 /// InvalidInputError when `preset` does not build.
@@ -134,6 +148,9 @@ class KeepBuildableDrag {
   std::string held_;
   std::vector<double> displacement_;
   double change_ = 0.0;
+  int window_ = 0;
+  nlohmann::json origin_;  ///< the preset when the drag of held_ began
+  double origin_size_ = 0.0;  ///< its model size
 };
 
 /// `result` (a repaired or closest preset) named after the input: "NAME-repaired"
