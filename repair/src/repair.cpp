@@ -494,10 +494,28 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   // The design at lambda on the line when its panels are all simple and it has
   // not grown much beyond the user's (a trajectory edge turned nearly into its
   // profile plane sends the axial net far out while every panel stays simple).
+  // No larger than a quarter beyond what the held field's own move makes of the
+  // design the drag began with (not compounding step after step); found once.
+  double limit = 0.0;
+  auto size_limit = [&] {
+    if (limit > 0.0) return limit;
+    limit = 1.5 * input.assembly.model_size();
+    if (origin && options.origin_size > 0.0 && !options.fixed.empty()) {
+      try {
+        json own = *origin;
+        own.at(json::json_pointer(options.fixed[0])) = preset.at(json::json_pointer(options.fixed[0]));
+        ++out.evaluations;
+        limit = 1.25 * std::max(options.origin_size, design_from_json(own).assembly.model_size());
+      } catch (const Error&) {
+        limit = 1.25 * options.origin_size;
+      } catch (const json::exception&) {
+      }
+    }
+    return limit;
+  };
   auto simple_at = [&](const Line& line, double lambda) {
     std::optional<Design> design = design_at(line, lambda);
-    const double limit = options.size_limit > 0.0 ? options.size_limit : 1.5 * input.assembly.model_size();
-    if (design && (!all_panels_simple(*design) || !(design->assembly.model_size() <= limit))) {
+    if (design && (!all_panels_simple(*design) || !(design->assembly.model_size() <= size_limit()))) {
       design.reset();
     }
     return design;
@@ -564,15 +582,7 @@ std::optional<Projection> KeepBuildableDrag::step(const json& preset, const std:
     }
   }
   options.drag_origin = origin_;
-  // No larger than a quarter beyond what the held field's own move makes of the
-  // design the drag began with (not compounding step after step).
-  try {
-    json own = origin_;
-    own.at(json::json_pointer(held)) = now;
-    options.size_limit = 1.25 * std::max(origin_size_, design_from_json(own).assembly.model_size());
-  } catch (const Error&) {
-    options.size_limit = origin_size_ > 0.0 ? 1.25 * origin_size_ : 0.0;
-  }
+  options.origin_size = origin_size_;
   options.first_window = window_;
   options.continue_along.clear();
   if (held == held_ && !displacement_.empty()) {

@@ -96,10 +96,12 @@ struct ProjectionOptions {
   /// `first_window` (an index into those: the one the drag's last step used).
   nlohmann::json drag_origin;
   int first_window = 0;
-  /// A projected design may not be larger than this (model size; 0: 1.5 times
-  /// the input's): a trajectory edge turned nearly into its profile plane sends
-  /// the axial net far out while every panel stays simple.
-  double size_limit = 0.0;
+  /// The model size of drag_origin (0: unknown). A projected design may not be
+  /// larger than 1.25 times the larger of it and that of drag_origin with the
+  /// held field moved (without a drag origin: 1.5 times the input's): a
+  /// trajectory edge turned nearly into its profile plane sends the axial net
+  /// far out while every panel stays simple.
+  double origin_size = 0.0;
 };
 
 struct Projection {
