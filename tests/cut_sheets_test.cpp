@@ -182,6 +182,11 @@ void check_sheets(const Design& design, const CutSheets& s) {
     }
     CHECK(overlaps == 0);
     CHECK(label_overlaps == 0);
+    // Every text reads left to right, or (within 15 degrees of vertical) bottom to top.
+    for (const SheetText& t : s.pages[k].texts) {
+      CAPTURE(t.text, t.box.axis.x(), t.box.axis.y());
+      CHECK((std::abs(t.box.axis.x()) < 0.26 ? t.box.axis.y() > 0.0 : t.box.axis.x() > 0.0));
+    }
     // Header and footer texts stay on the page, clear of every piece.
     for (const SheetText& t : s.pages[k].texts) {
       for (const Vec2& c : t.box.corners()) CHECK(inside_box(Box2{Vec2::Zero(), Vec2::UnitX(), s.page.x(), s.page.y()}, c));

@@ -60,8 +60,11 @@ Box2 label_box(const Polygon2& outline, std::optional<std::size_t> edge, double 
 }  // namespace
 
 Box2 upright(const Box2& box) {
-  // Left to right, or (within 15 degrees of vertical) bottom to top, as drawings label vertical lines.
-  const bool upside_down = box.axis.x() < -1e-9 || (box.axis.x() < 0.26 && box.axis.y() < 0.0);
+  // Left to right, or (within 15 degrees of vertical, either side) bottom to top, as drawings label
+  // vertical lines. (Deciding the band by |x|: a near-vertical axis with a tiny negative x was
+  // turned to read downward before.)
+  const bool near_vertical = std::abs(box.axis.x()) < 0.26;
+  const bool upside_down = near_vertical ? box.axis.y() < 0.0 : box.axis.x() < 0.0;
   if (!upside_down) return box;
   return Box2{box.origin + box.width * box.axis + box.height * box.up(), -box.axis, box.width, box.height};
 }
