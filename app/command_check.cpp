@@ -5,6 +5,7 @@
 #include "phedra/buildability.h"
 #include "phedra/errors.h"
 #include "support.h"
+#include "phedra/check_report.h"
 
 #include <memory>
 #include <ostream>
@@ -56,7 +57,7 @@ void add_check_command(CLI::App& app, Context& context) {
     if (!options->geometry_only) buildability = assess_buildability(loaded.design, &loaded.preset, options->buildability);
     const bool buildable = !buildability || buildability->buildable();
     if (options->json) {
-      nlohmann::json j = report.to_json();
+      nlohmann::json j = report_json(report);
       j["geometry_passed"] = report.passed();
       j["passed"] = report.passed() && buildable;
       if (buildability) j["buildability"] = buildability->to_json();

@@ -8,6 +8,8 @@
 #include "phedra/preset.h"
 #include "support.h"
 #include "buildability_warning.h"
+#include "phedra/developed_preset.h"
+#include "phedra/files.h"
 
 #include <cmath>
 #include <filesystem>

@@ -11,6 +11,7 @@
 #include "buildability_warning.h"
 #include "progress.h"
 #include "support.h"
+#include "phedra/motion_document.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -8,6 +8,8 @@
 #include "phedra/self_intersection.h"
 #include "buildability_warning.h"
 #include "support.h"
+#include "phedra/motion_document.h"
+#include "phedra/check_report.h"
 
 #include <algorithm>
 #include <memory>
@@ -81,7 +83,7 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
                    {"isometry", at_star.isometry.value},
                    {"closure", at_star.closure.value},
                    {"reproduction", at_star.reproduction},
-                   {"at_t_star", at_star.to_json()}};
+                   {"at_t_star", report_json(at_star)}};
   j["configuration_curve"] = curve_json(p.configuration_cycle());
   if (a.member_count() == 1) {
     j["rows"] = g.rows();

@@ -6,6 +6,7 @@
 #include "phedra/preset.h"
 #include "phedra/repair.h"
 #include "support.h"
+#include "phedra/files.h"
 
 #include <filesystem>
 #include <memory>

@@ -4,6 +4,7 @@
 #include "motion_parameters.h"
 #include "support.h"
 #include "buildability_warning.h"
+#include "phedra/motion_document.h"
 
 #include <algorithm>
 

@@ -7,6 +7,8 @@
 #include "phedra/preset.h"
 #include "static_server.h"
 #include "support.h"
+#include "phedra/files.h"
+#include "phedra/design_preset.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -1,7 +1,8 @@
 #include "support.h"
 
-#include "phedra/atomic_file.h"
+#include "phedra/files.h"
 #include "phedra/preset.h"
+#include "phedra/design_preset.h"
 
 #include <ostream>
 

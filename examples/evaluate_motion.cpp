@@ -6,6 +6,7 @@
 #include "phedra/interval_check.h"
 #include "phedra/phedron.h"
 #include "phedra/preset.h"
+#include "phedra/check_report.h"
 
 #include <iostream>
 

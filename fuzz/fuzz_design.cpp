@@ -17,6 +17,8 @@
 #include "phedra/mesh_export.h"
 #include "phedra/motion_document.h"
 #include "phedra/preset.h"
+#include "phedra/design_preset.h"
+#include "phedra/developed_preset.h"
 
 #include <cmath>
 #include <cstdint>

@@ -17,9 +17,9 @@ ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
 ln -sfn /usr/include/tiny_gltf.h "$out/include/tiny_gltf.h"
 bash scripts/build-nlopt-wasm.sh  # NLopt for repair, from Debian's source package (once)
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
-       -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
-sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp analysis/src/*.cpp repair/src/*.cpp
-         exporters/src/fold_export.cpp exporters/src/gltf_export.cpp exporters/src/keyframes.cpp exporters/src/time_map.cpp
+       -Iio/include -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
+sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp io/src/*.cpp analysis/src/*.cpp repair/src/*.cpp
+         exporters/src/fold_export.cpp exporters/src/gltf_*.cpp exporters/src/keyframes.cpp exporters/src/time_map.cpp
          exporters/src/panel_tree.cpp wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
 pids=()

@@ -4,6 +4,7 @@
 
 #include "phedra/buildability.h"
 #include "support/cli_run.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -10,6 +10,7 @@
 #include "phedra/tube.h"
 #include "phedra/tube_array.h"
 #include "support/random_input.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 

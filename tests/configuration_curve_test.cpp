@@ -9,6 +9,7 @@
 #include "phedra/gltf_export.h"
 #include "phedra/phedron.h"
 #include "support/random_input.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

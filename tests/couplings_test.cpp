@@ -12,6 +12,8 @@
 #include "phedra/tube.h"
 #include "phedra/tube_array.h"
 #include "support/random_input.h"
+#include "phedra/design_preset.h"
+#include "phedra/check_report.h"
 
 #include <catch2/catch.hpp>
 
@@ -105,7 +107,7 @@ TEST_CASE("random 2D arrays: every cell closed, shared vertices together over th
     CheckOptions options;
     options.samples = 60;
     const AssemblyCheckReport r = check_assembly(a, options);
-    CAPTURE(r.to_json().dump());
+    CAPTURE(report_json(r).dump());
     CHECK(r.passed());
     CHECK(r.closure.value <= 1e-9 * r.model_size);
     CHECK(r.shared.value <= 1e-9 * r.model_size);

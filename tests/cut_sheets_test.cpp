@@ -7,6 +7,7 @@
 #include "phedra/cut_sheets.h"
 #include "phedra/fold_export.h"
 #include "support/cli_run.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 

@@ -8,6 +8,8 @@
 #include "phedra/phedron.h"
 #include "phedra/preset.h"
 #include "support/cli_run.h"
+#include "phedra/files.h"
+#include "phedra/developed_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -8,6 +8,8 @@
 #include "phedra/keyframes.h"
 #include "phedra/mesh_export.h"
 #include "phedra/panel_tree.h"
+#include "phedra/design_preset.h"
+#include "phedra/fold_angle.h"
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>

@@ -9,6 +9,7 @@
 #include "phedra/panel_tree.h"
 #include "support/gltf_player.h"
 #include "support/random_input.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 

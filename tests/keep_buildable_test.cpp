@@ -9,8 +9,10 @@
 #include "phedra/design.h"
 #include "phedra/errors.h"
 #include "phedra/panel_nets.h"
+#include "phedra/keep_buildable.h"
 #include "phedra/repair.h"
 #include "phedra/self_intersection.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -7,6 +7,7 @@
 #include "phedra/phedron.h"
 #include "phedra/preset.h"
 #include "support/random_input.h"
+#include "phedra/check_report.h"
 
 #include <catch2/catch.hpp>
 
@@ -72,7 +73,7 @@ void check_properties(const PHedron& p) {
   CheckOptions options;
   options.samples = 50;
   const IntervalCheckReport report = check_over_interval(p, options);
-  CAPTURE(report.to_json().dump());
+  CAPTURE(report_json(report).dump());
   CHECK(report.planarity.value <= eps);
   CHECK(report.isometry.value <= eps);
   CHECK(report.reproduction <= eps);

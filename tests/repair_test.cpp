@@ -9,6 +9,7 @@
 #include "phedra/repair.h"
 #include "phedra/tube.h"
 #include "support/random_input.h"
+#include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

@@ -6,6 +6,8 @@
 #include "phedra/interval_check.h"
 #include "phedra/preset.h"
 #include "phedra/smooth_trajectory.h"
+#include "phedra/design_preset.h"
+#include "phedra/curve_preset.h"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>

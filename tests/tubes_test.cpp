@@ -8,6 +8,7 @@
 #include "phedra/preset.h"
 #include "phedra/tube.h"
 #include "support/random_input.h"
+#include "phedra/check_report.h"
 
 #include <catch2/catch.hpp>
 
@@ -67,7 +68,7 @@ TEST_CASE("100+ random tubes of each kind stay closed over the whole flexion int
       CheckOptions options;
       options.samples = 50;
       const IntervalCheckReport r = check_over_interval(*p, options);
-      CAPTURE(preset_to_json(p->input()).dump(), r.to_json().dump());
+      CAPTURE(preset_to_json(p->input()).dump(), report_json(r).dump());
       CHECK(r.closure.value <= 1e-9 * r.model_size);
       CHECK(r.planarity.value <= 1e-9 * r.model_size);
       CHECK(r.isometry.value <= 1e-9 * r.model_size);
@@ -149,7 +150,7 @@ TEST_CASE("axial tubes (every profile plane through the axis) close too", "[tube
       const FlexionInterval& f = p.flexion_interval();
       if (!test::well_inside_interval(p.t_star(), f.lower.t, f.upper.t, p.model_size())) continue;
       const IntervalCheckReport r = check_over_interval(p, {});
-      CAPTURE(k, r.to_json().dump());
+      CAPTURE(k, report_json(r).dump());
       CHECK(r.passed());
       ++checked;
     } catch (const InvalidInputError&) {

@@ -12,8 +12,10 @@
 #include "phedra/fold_export.h"
 #include "phedra/gltf_export.h"
 #include "phedra/preset.h"
+#include "phedra/keep_buildable.h"
 #include "phedra/repair.h"
 #include "phedra/self_intersection.h"
+#include "phedra/design_preset.h"
 
 #include <nlohmann/json.hpp>
 

@@ -2,6 +2,7 @@
 
 #include "phedra/errors.h"
 #include "phedra/panel_nets.h"
+#include "phedra/design_preset.h"
 
 #include <algorithm>
 #include <cmath>

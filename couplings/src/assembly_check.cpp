@@ -1,13 +1,11 @@
 #include "phedra/assembly_check.h"
 
-#include "phedra/number_format.h"
 #include "phedra/tube.h"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <tuple>
-#include <ostream>
 
 namespace phedra {
 namespace {
@@ -105,38 +103,6 @@ class AssemblyChecker {
 }  // namespace
 
 bool AssemblyCheckReport::passed() const { return IntervalCheckReport::passed() && shared.value <= tolerance; }
-
-nlohmann::json AssemblyCheckReport::to_json() const {
-  nlohmann::json j = IntervalCheckReport::to_json();
-  j["passed"] = passed();
-  j["name"] = name;
-  j["members"] = members;
-  j["shared_vertex_groups"] = shared_groups;
-  j["shared_vertices"] = worst_case_json(shared, model_size);
-  j["member_closure"] = member_closure;
-  if (!warning.empty()) j["warning"] = warning;
-  return j;
-}
-
-std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& r) {
-  out << "geometry " << (r.passed() ? "PASS" : "FAIL") << ": " << r.name << ", " << r.members << (r.members == 1 ? " member" : " members")
-      << ", " << r.samples << " configurations over [" << format_human(r.t_lambda) << ", " << format_human(r.t_mu)
-      << "], tolerance " << format_human(r.tolerance) << " (model size " << format_human(r.model_size) << ")\n";
-  if (r.shape_checked) {
-    print_worst_case(out, "planarity       ", r.planarity, r.model_size);
-    print_worst_case(out, "isometry        ", r.isometry, r.model_size);
-  } else {
-    out << "  planarity, isometry: not checked (--closure-only)\n";
-  }
-  if (r.closed) print_worst_case(out, "closure gap     ", r.closure, r.model_size);
-  if (r.members > 1) {
-    out << "  shared vertices: " << r.shared_groups << " groups\n";
-    print_worst_case(out, "shared mismatch ", r.shared, r.model_size);
-  }
-  out << "  reproduction    " << format_human(r.reproduction) << " (evaluate(t*) against the constructed nets)\n";
-  if (!r.warning.empty()) out << "  warning: " << r.warning << '\n';
-  return out;
-}
 
 AssemblyCheckReport check_assembly(const Assembly& a, const CheckOptions& options) {
   AssemblyChecker checker(a, options.relative_tolerance, options.shape);

@@ -2,6 +2,7 @@
 
 #include "phedra/assembly_mesh.h"
 #include "phedra/errors.h"
+#include "phedra/fold_angle.h"
 
 #include <nlohmann/json.hpp>
 
@@ -107,11 +108,6 @@ void write_state(const Hinges& h, const std::vector<double>& raw, json& angles, 
 }
 
 }  // namespace
-
-double fold_angle_degrees(const Vec3& nf, const Vec3& ng, const Vec3& a, const Vec3& b) {
-  const Vec3 edge = (b - a).normalized();
-  return std::atan2(-nf.cross(ng).dot(edge), nf.dot(ng)) * 180.0 / M_PI;
-}
 
 std::string fold_json(const Design& design, const std::vector<double>& ts, const json& buildability) {
   if (ts.empty()) throw InvalidInputError("", "FOLD export needs at least one t");

@@ -1,9 +1,6 @@
 #include "phedra/interval_check.h"
 
 #include "phedra/errors.h"
-#include "phedra/number_format.h"
-
-#include <ostream>
 
 namespace phedra {
 namespace {
@@ -64,43 +61,9 @@ std::vector<double> interval_samples(double lo, double hi, std::size_t samples) 
   return ts;
 }
 
-nlohmann::json worst_case_json(const WorstCase& w, double size) {
-  return {{"value", w.value}, {"relative", size > 0 ? w.value / size : w.value}, {"t", w.t}, {"where", w.location}};
-}
-
-void print_worst_case(std::ostream& out, const char* name, const WorstCase& w, double size) {
-  out << "  " << name << format_human(w.value) << " (" << format_human(w.value / size)
-      << " of the model size) at t = " << format_human(w.t) << (w.location.empty() ? "" : ", " + w.location) << '\n';
-}
-
 bool IntervalCheckReport::passed() const {
   return planarity.value <= tolerance && isometry.value <= tolerance && reproduction <= tolerance &&
          (!closed || closure.value <= tolerance);
-}
-
-nlohmann::json IntervalCheckReport::to_json() const {
-  nlohmann::json j{{"passed", passed()},
-                   {"model_size", model_size},
-                   {"tolerance", tolerance},
-                   {"flexion_interval", {t_lambda, t_mu}},
-                   {"t_star", t_star},
-                   {"samples", samples},
-                   {"planarity", shape_checked ? worst_case_json(planarity, model_size) : nlohmann::json()},
-                   {"isometry", shape_checked ? worst_case_json(isometry, model_size) : nlohmann::json()},
-                   {"reproduction", reproduction}};
-  if (closed) j["closure"] = worst_case_json(closure, model_size);
-  return j;
-}
-
-std::ostream& operator<<(std::ostream& out, const IntervalCheckReport& r) {
-  out << (r.passed() ? "PASS" : "FAIL") << ": " << r.samples << " configurations over [" << format_human(r.t_lambda)
-      << ", " << format_human(r.t_mu) << "], tolerance " << format_human(r.tolerance) << " (model size "
-      << format_human(r.model_size) << ")\n";
-  print_worst_case(out, "planarity    ", r.planarity, r.model_size);
-  print_worst_case(out, "isometry     ", r.isometry, r.model_size);
-  if (r.closed) print_worst_case(out, "closure gap  ", r.closure, r.model_size);
-  out << "  reproduction " << format_human(r.reproduction) << " (evaluate(t*) against the constructed net)\n";
-  return out;
 }
 
 IntervalCheckReport check_at_t_star(const PHedron& p, double relative) {

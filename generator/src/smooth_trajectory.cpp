@@ -2,7 +2,6 @@
 
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
-#include "phedra/preset.h"
 
 #include <algorithm>
 #include <cmath>
@@ -10,8 +9,6 @@
 
 namespace phedra {
 namespace {
-
-using nlohmann::json;
 
 /// Two unit vectors that make (e1, e2, axis) right-handed and orthonormal.
 std::pair<Vec3, Vec3> plane_basis(const Vec3& axis) {
@@ -21,43 +18,14 @@ std::pair<Vec3, Vec3> plane_basis(const Vec3& axis) {
   return {e1, axis.cross(e1)};
 }
 
-const json& member(const json& object, const char* key, const std::string& field) {
-  auto it = object.find(key);
-  if (it == object.end()) throw InvalidInputError(field + "." + key, "missing (required key)");
-  return *it;
-}
+}  // namespace
 
-void only_keys(const json& object, const std::vector<std::string>& keys, const std::string& field) {
-  if (!object.is_object()) throw InvalidInputError(field, "expected an object");
-  for (const auto& [key, value] : object.items()) {
-    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
-      std::string list;
-      for (const std::string& k : keys) list += (list.empty() ? "" : ", ") + k;
-      throw InvalidInputError(field + "." + key, "unknown key (known: " + list + ")");
-    }
-  }
-}
-
-Vec3 vector3(const json& value, const std::string& field) {
-  const std::vector<double> v = json_numbers(value, field);
-  if (v.size() != 3) throw InvalidInputError(field, "expected [x, y, z], got " + std::to_string(v.size()) + " numbers");
-  return Vec3(v[0], v[1], v[2]);
-}
-
-SmoothCurve helix(const json& spec, const Vec3& axis) {
+SmoothCurve helix_curve(const HelixSpec& spec, const Vec3& axis_in) {
   const std::string field = "trajectory.helix";
-  only_keys(spec, {"center", "radius", "rise_per_turn", "turns", "start_angle_degrees", "clockwise"}, field);
-  const Vec3 center = spec.contains("center") ? vector3(spec["center"], field + ".center") : Vec3::Zero();
-  const double radius = json_number(member(spec, "radius", field), field + ".radius");
-  const double rise = json_number(member(spec, "rise_per_turn", field), field + ".rise_per_turn");
-  const double turns = json_number(member(spec, "turns", field), field + ".turns");
-  const double start =
-      spec.contains("start_angle_degrees") ? json_number(spec["start_angle_degrees"], field + ".start_angle_degrees") : 0.0;
-  bool clockwise = false;
-  if (spec.contains("clockwise")) {
-    if (!spec["clockwise"].is_boolean()) throw InvalidInputError(field + ".clockwise", "expected true or false");
-    clockwise = spec["clockwise"].get<bool>();
-  }
+  const Vec3 axis = axis_in.normalized();
+  const Vec3 center = spec.center;
+  const double radius = spec.radius, rise = spec.rise_per_turn, turns = spec.turns, start = spec.start_angle_degrees;
+  const bool clockwise = spec.clockwise;
   if (!(radius > 0.0)) throw InvalidInputError(field + ".radius", "must be positive, got " + format_number(radius));
   if (!(turns > 0.0)) throw InvalidInputError(field + ".turns", "must be positive, got " + format_number(turns));
   if (turns > 1000.0) throw InvalidInputError(field + ".turns", "at most 1000 turns, got " + format_number(turns));
@@ -80,22 +48,10 @@ SmoothCurve helix(const json& spec, const Vec3& axis) {
 }
 
 /// Clamped uniform B-spline: knots 0 (degree + 1 times), 1/(k), ..., 1 (degree + 1 times).
-SmoothCurve spline(const json& spec) {
+SmoothCurve spline_curve(const Points& control, int degree) {
   const std::string field = "trajectory.spline";
-  only_keys(spec, {"control_points", "degree"}, field);
-  const json& list = member(spec, "control_points", field);
-  if (!list.is_array()) throw InvalidInputError(field + ".control_points", "expected an array of [x, y, z]");
-  Points control;
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    control.push_back(vector3(list[i], field + ".control_points[" + std::to_string(i) + "]"));
-  }
-  int degree = 3;
-  if (spec.contains("degree")) {
-    const double d = json_number(spec["degree"], field + ".degree");
-    if (d != std::floor(d) || d < 1 || d > 7) {
-      throw InvalidInputError(field + ".degree", "expected a whole number from 1 to 7, got " + format_number(d));
-    }
-    degree = static_cast<int>(d);
+  if (degree < 1 || degree > 7) {
+    throw InvalidInputError(field + ".degree", "expected a whole number from 1 to 7, got " + std::to_string(degree));
   }
   if (control.size() < static_cast<std::size_t>(degree) + 1) {
     throw InvalidInputError(field + ".control_points", "a degree-" + std::to_string(degree) + " spline needs at least " +
@@ -142,6 +98,8 @@ SmoothCurve spline(const json& spec) {
   };
   return c;
 }
+
+namespace {
 
 /// Largest distance of the curve between u0 and u1 from the chord (32 points).
 double chord_deviation(const SmoothCurve& curve, double u0, double u1) {
@@ -197,65 +155,39 @@ CurveSampling discretize(const SmoothCurve& curve, double tolerance, const std::
   return s;
 }
 
-SmoothCurve smooth_curve(const json& trajectory, const Vec3& axis_in) {
-  only_keys(trajectory, {"helix", "spline", "chord_tolerance"}, "trajectory");
+Points normal_directions(const Points& trajectory, Points tangents, const Vec3& axis_in, double angle_degrees) {
   const Vec3 axis = axis_in.normalized();
-  const bool has_helix = trajectory.contains("helix"), has_spline = trajectory.contains("spline");
-  if (has_helix == has_spline) {
-    throw InvalidInputError("trajectory", "a smooth trajectory is either {\"helix\": {...}} or {\"spline\": {...}}");
-  }
-  return has_helix ? helix(trajectory["helix"], axis) : spline(trajectory["spline"]);
-}
-
-CurveSampling trajectory_curve(const json& trajectory, const Vec3& axis) {
-  const SmoothCurve curve = smooth_curve(trajectory, axis);
-  const double tolerance =
-      json_number(member(trajectory, "chord_tolerance", "trajectory"), "trajectory.chord_tolerance");
-  return discretize(curve, tolerance, "trajectory.chord_tolerance");
-}
-
-Points directions_by_rule(const json& rule, const Points& trajectory, Points tangents, const Vec3& axis_in) {
-  const Vec3 axis = axis_in.normalized();
-  if (!rule.is_object() || !rule.contains("rule") || !rule["rule"].is_string()) {
-    throw InvalidInputError("directions", "expected an array of [x, y, z] or a rule object {\"rule\": \"normal\"} / "
-                                          "{\"rule\": \"radial\", \"through\": [x, y, z]}");
-  }
-  const std::string name = rule["rule"].get<std::string>();
-  Points out;
-  if (name == "normal") {
-    only_keys(rule, {"rule", "angle_degrees"}, "directions");
-    const double angle =
-        rule.contains("angle_degrees") ? json_number(rule["angle_degrees"], "directions.angle_degrees") : 0.0;
-    const Eigen::AngleAxisd turn(angle * std::numbers::pi / 180.0, axis);
-    if (tangents.empty()) {
-      for (std::size_t i = 0; i < trajectory.size(); ++i) {
-        const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, trajectory.size() - 1);
-        tangents.push_back(trajectory[b] - trajectory[a]);
-      }
-    }
-    for (std::size_t i = 0; i < tangents.size(); ++i) {
-      const Vec3 across = tangents[i] - tangents[i].dot(axis) * axis;
-      if (across.norm() <= 1e-12 * std::max(1.0, tangents[i].norm())) {
-        throw InvalidInputError("directions.rule",
-                                "\"normal\": the trajectory's tangent at point " + std::to_string(i) +
-                                    " is parallel to the axis, so it has no normal across the axis");
-      }
-      out.push_back(turn * axis.cross(across).normalized());
-    }
-  } else if (name == "radial") {
-    only_keys(rule, {"rule", "through"}, "directions");
-    const Vec3 through = vector3(member(rule, "through", "directions"), "directions.through");
+  const Eigen::AngleAxisd turn(angle_degrees * std::numbers::pi / 180.0, axis);
+  if (tangents.empty()) {
     for (std::size_t i = 0; i < trajectory.size(); ++i) {
-      Vec3 d = trajectory[i] - through;
-      d -= d.dot(axis) * axis;
-      if (d.norm() <= 1e-12 * std::max(1.0, trajectory[i].norm())) {
-        throw InvalidInputError("directions.through", "\"radial\": trajectory point " + std::to_string(i) +
-                                                          " lies on the line through this point along the axis");
-      }
-      out.push_back(d.normalized());
+      const std::size_t a = i == 0 ? 0 : i - 1, b = std::min(i + 1, trajectory.size() - 1);
+      tangents.push_back(trajectory[b] - trajectory[a]);
     }
-  } else {
-    throw InvalidInputError("directions.rule", "unknown rule \"" + name + "\" (known: normal, radial)");
+  }
+  Points out;
+  for (std::size_t i = 0; i < tangents.size(); ++i) {
+    const Vec3 across = tangents[i] - tangents[i].dot(axis) * axis;
+    if (across.norm() <= 1e-12 * std::max(1.0, tangents[i].norm())) {
+      throw InvalidInputError("directions.rule",
+                              "\"normal\": the trajectory's tangent at point " + std::to_string(i) +
+                                  " is parallel to the axis, so it has no normal across the axis");
+    }
+    out.push_back(turn * axis.cross(across).normalized());
+  }
+  return out;
+}
+
+Points radial_directions(const Points& trajectory, const Vec3& through, const Vec3& axis_in) {
+  const Vec3 axis = axis_in.normalized();
+  Points out;
+  for (std::size_t i = 0; i < trajectory.size(); ++i) {
+    Vec3 d = trajectory[i] - through;
+    d -= d.dot(axis) * axis;
+    if (d.norm() <= 1e-12 * std::max(1.0, trajectory[i].norm())) {
+      throw InvalidInputError("directions.through", "\"radial\": trajectory point " + std::to_string(i) +
+                                                        " lies on the line through this point along the axis");
+    }
+    out.push_back(d.normalized());
   }
   return out;
 }

@@ -7,10 +7,6 @@
 #include "phedra/assembly.h"
 #include "phedra/interval_check.h"
 
-#include <nlohmann/json.hpp>
-
-#include <iosfwd>
-
 namespace phedra {
 
 /// The figures of IntervalCheckReport over all members (`closed`: some member is a
@@ -24,10 +20,7 @@ struct AssemblyCheckReport : IntervalCheckReport {
   std::string warning;                 ///< e.g. an anti-parallelogram that violates its symmetry condition
 
   bool passed() const;
-  nlohmann::json to_json() const;
 };
-
-std::ostream& operator<<(std::ostream& out, const AssemblyCheckReport& report);
 
 AssemblyCheckReport check_assembly(const Assembly& assembly, const CheckOptions& options = {});
 

@@ -2,14 +2,16 @@
 // A design: what a preset describes, as an assembly. The core schema gives one
 // P-hedron (open, or a tube when its heights close the profile); the keys
 // `tube`, `grid`, `row`, `couplings` and `merge` (docs/presets.md) build tubes
-// and tube arrays on the same trajectory, directions and axis.
+// and tube arrays on the same trajectory, directions and axis. The preset's
+// JSON is read by io/ (design_preset.h); the builders here take the geometry.
 
 #include "phedra/assembly.h"
+#include "phedra/assembly_mesh.h"
+#include "phedra/tube.h"
 
-#include <nlohmann/json.hpp>
-
-#include <filesystem>
+#include <array>
 #include <string>
+#include <vector>
 
 namespace phedra {
 
@@ -21,33 +23,19 @@ struct Design {
   std::string kind;
 };
 
-/// From a parsed preset (or reference case) document. InvalidInputError naming the
-/// field for every problem.
-Design design_from_json(const nlohmann::json& document);
+/// One P-hedron (open, or closed when its heights close the profile), member name
+/// "P-hedron" or "tube".
+Design single_design(ControlPolylines input);
 
-/// Reads, parses and builds a preset file (IOError when unreadable).
-Design load_design(const std::filesystem::path& path);
+/// A tube of the given type whose apexes are at heights `z` (make_tube).
+Design tube_design(ControlPolylines input, TubeType type, const TubeHeights& z);
 
-}  // namespace phedra
-
-#include "phedra/assembly_mesh.h"
-
-namespace phedra {
+/// A grid of parallelogram cells over the u and w heights (make_parallelogram_grid).
+Design grid_design(ControlPolylines input, const std::vector<double>& u_heights, const std::vector<double>& w_heights);
 
 /// The distinct panels of a design: the mesh of every export and report, whose
 /// face indices are the panel numbers users see. Shared vertices welded; a wall
 /// two members share is one panel of both, or deleted when the preset merges.
 AssemblyMesh panel_mesh(const Design& design);
-
-}  // namespace phedra
-
-#include "phedra/motion_document.h"
-
-namespace phedra {
-
-/// The motion document of a design: one P-hedron keeps labels [i, c]; an
-/// assembly gets labels [member, i, c], member names and face members, over its
-/// separate or (with merge) merged mesh.
-MotionDocument motion_document(const Design& design);
 
 }  // namespace phedra

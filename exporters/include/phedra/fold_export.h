@@ -23,8 +23,4 @@ namespace phedra {
 /// write a non-finite number.
 std::string fold_json(const Design& design, const std::vector<double>& ts, const nlohmann::json& buildability = nullptr);
 
-/// Fold angle in degrees of the hinge a-b between faces f (traversing a->b) and g,
-/// from their unit normals: positive for a valley, negative for a mountain.
-double fold_angle_degrees(const Vec3& normal_f, const Vec3& normal_g, const Vec3& a, const Vec3& b);
-
 }  // namespace phedra

@@ -26,8 +26,6 @@
 #include "phedra/grid_topology.h"
 #include "phedra/linkage.h"
 
-#include <nlohmann/json.hpp>
-
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,10 +38,6 @@ struct DevelopedInput {
   std::vector<double> apex_heights;   ///< z of S_0..S_n
   std::vector<Sign> signs;            ///< s_1..s_{n-1}
 };
-
-/// From {"name", "developed": {"trajectory": [[x, z], ...], "apex_heights": [...], "signs": "..."}}.
-/// InvalidInputError naming the field (e.g. "developed.trajectory[2]").
-DevelopedInput developed_from_json(const nlohmann::json& document);
 
 /// The non-expansion figures of one direction of motion.
 struct FlexDirection {

@@ -1,16 +1,15 @@
 #pragma once
 // Planarity, isometry and (for tubes) closure over the whole flexion interval
 // (dense samples, both ends and t*), with the worst value and where it occurs.
-// Shared by `phedra check`, `phedra info` and the tests.
+// Shared by `phedra check`, `phedra info` and the tests; their JSON and text
+// forms are io/check_report.h.
 
 #include "phedra/figure_tracker.h"
 #include "phedra/phedron.h"
 #include "phedra/tolerances.h"
 
-#include <nlohmann/json.hpp>
-
-#include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace phedra {
 
@@ -38,10 +37,7 @@ struct IntervalCheckReport {
   bool shape_checked = true;  ///< planarity and isometry were measured (CheckOptions::shape)
 
   bool passed() const;
-  nlohmann::json to_json() const;
 };
-
-std::ostream& operator<<(std::ostream& out, const IntervalCheckReport& report);
 
 /// Checks the P-hedron at t* only (samples = 1).
 IntervalCheckReport check_at_t_star(const PHedron& phedron, double relative_tolerance = tolerance::check_relative);
@@ -51,11 +47,5 @@ IntervalCheckReport check_over_interval(const PHedron& phedron, const CheckOptio
 
 /// `samples` evenly spaced parameters of [lo, hi], both ends included exactly.
 std::vector<double> interval_samples(double lo, double hi, std::size_t samples);
-
-/// JSON of a worst case: {value, relative, t, where}.
-nlohmann::json worst_case_json(const WorstCase& w, double model_size);
-
-/// "  NAME VALUE (REL of the model size) at t = T, WHERE".
-void print_worst_case(std::ostream& out, const char* name, const WorstCase& w, double model_size);
 
 }  // namespace phedra

@@ -4,11 +4,10 @@
 // with the fewest evenly spaced parameter values whose chords all stay within a
 // stated tolerance of the curve; and direction rules that give one profile
 // direction per trajectory point (for a curve, whose point count the user does
-// not know). docs/presets.md, "Smooth trajectories".
+// not know). docs/presets.md, "Smooth trajectories". The preset objects that
+// ask for them are read by io/ (curve_preset.h).
 
 #include "phedra/vector_types.h"
-
-#include <nlohmann/json.hpp>
 
 #include <functional>
 #include <string>
@@ -39,19 +38,33 @@ inline constexpr std::size_t max_curve_segments = 100000;
 /// naming `field` when that would take more than max_curve_segments.
 CurveSampling discretize(const SmoothCurve& curve, double tolerance, const std::string& field);
 
-/// The curve of a trajectory object: {"helix": {...}} or {"spline": {...}}, with
-/// "chord_tolerance". `axis` is the preset's (unit) axis. Errors name the field,
-/// e.g. "trajectory.helix.radius".
-SmoothCurve smooth_curve(const nlohmann::json& trajectory, const Vec3& axis);
+/// A helix about `axis` (through `center`): `turns` turns of `radius`, rising
+/// `rise_per_turn` along the axis per turn, starting at `start_angle_degrees`.
+/// InvalidInputError naming "trajectory.helix.radius" / ".turns" for a radius or
+/// turn count that is not positive, or above 1000 turns.
+struct HelixSpec {
+  Vec3 center = Vec3::Zero();
+  double radius = 1.0;
+  double rise_per_turn = 0.0;
+  double turns = 1.0;
+  double start_angle_degrees = 0.0;
+  bool clockwise = false;
+};
+SmoothCurve helix_curve(const HelixSpec& spec, const Vec3& axis);
 
-/// smooth_curve(...) discretized to its "chord_tolerance".
-CurveSampling trajectory_curve(const nlohmann::json& trajectory, const Vec3& axis);
+/// The clamped uniform B-spline of degree 1..7 on `control` (at least degree + 1
+/// points; InvalidInputError naming "trajectory.spline.degree" / ".control_points").
+SmoothCurve spline_curve(const Points& control, int degree);
 
-/// Directions by a rule object: {"rule": "normal", "angle_degrees": a} (orthogonal
-/// to the axis and to the tangent's part orthogonal to the axis, turned by a
-/// about the axis) or {"rule": "radial", "through": [x, y, z]} (from the line
-/// through that point along the axis to the trajectory point). `tangents` may be
-/// empty: then they are the polyline's (central differences).
-Points directions_by_rule(const nlohmann::json& rule, const Points& trajectory, Points tangents, const Vec3& axis);
+/// One direction per trajectory point, orthogonal to the axis and to the
+/// tangent's part orthogonal to the axis, turned by `angle_degrees` about the
+/// axis. `tangents` may be empty: then they are the polyline's (central
+/// differences). InvalidInputError ("directions.rule") where a tangent is
+/// parallel to the axis.
+Points normal_directions(const Points& trajectory, Points tangents, const Vec3& axis, double angle_degrees);
+
+/// One direction per trajectory point: from the line through `through` along the
+/// axis to the point (InvalidInputError "directions.through" for a point on it).
+Points radial_directions(const Points& trajectory, const Vec3& through, const Vec3& axis);
 
 }  // namespace phedra

@@ -6,7 +6,7 @@
 
 #include "phedra/assembly_mesh.h"
 #include "phedra/errors.h"
-#include "phedra/fold_export.h"
+#include "phedra/fold_angle.h"
 #include "phedra/number_format.h"
 
 #include <algorithm>

@@ -4,6 +4,7 @@
 // geometric assumptions are checked by validate() and the PHedron constructor.
 
 #include "phedra/control_polylines.h"
+#include "phedra/json_fields.h"
 
 #include <nlohmann/json.hpp>
 
@@ -29,12 +30,6 @@ ControlPolylines preset_from_json(const nlohmann::json& preset, const PresetKeys
 /// for a reference case file.
 const nlohmann::json& preset_object(const nlohmann::json& document);
 
-/// Helpers for wider preset parsers: a finite number, an array of numbers, an
-/// unsigned index (InvalidInputError naming `field` otherwise).
-double json_number(const nlohmann::json& value, const std::string& field);
-std::vector<double> json_numbers(const nlohmann::json& value, const std::string& field);
-std::size_t json_index(const nlohmann::json& value, const std::string& field);
-
 /// Parses preset text: a preset object, or a reference case file whose preset
 /// sits under the key "preset". Malformed JSON throws InvalidInputError with the
 /// line and column of the problem.
@@ -45,11 +40,5 @@ ControlPolylines load_preset(const std::filesystem::path& path);
 
 /// The preset object of `input` (round-trips through preset_from_json).
 nlohmann::json preset_to_json(const ControlPolylines& input);
-
-/// Parses JSON text; a syntax error becomes InvalidInputError("", "line L, column C: ...").
-nlohmann::json parse_json_text(std::string_view text);
-
-/// Reads a whole file (IOError naming the path when it cannot).
-std::string read_text_file(const std::filesystem::path& path);
 
 }  // namespace phedra

@@ -1,13 +1,17 @@
 #pragma once
-// Output files that appear whole or not at all: content goes to a temporary file
-// beside the target and is renamed over it on commit(). A failure (or a
-// destructor without commit) removes the temporary file.
+// Whole files: reading one as text, and output files that appear whole or not
+// at all (AtomicFile: content goes to a temporary file beside the target and is
+// renamed over it on commit(); a failure, or a destructor without commit,
+// removes the temporary file).
 
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <string_view>
 
 namespace phedra {
+/// Reads a whole file (IOError naming the path when it cannot).
+std::string read_text_file(const std::filesystem::path& path);
 
 class AtomicFile {
  public:

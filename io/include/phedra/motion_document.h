@@ -6,6 +6,7 @@
 //    "faces": [[a, b, c, d], ...], "face_members": [...] (assemblies),
 //    "samples": [{"t": T, "vertices": [[x, y, z], ...]}, ...]}
 
+#include "phedra/design.h"
 #include "phedra/grid_topology.h"
 #include "phedra/vector_types.h"
 
@@ -37,6 +38,11 @@ struct MotionDocument {
 
 /// The document of one P-hedron: labels [i, c] in its grid.
 MotionDocument motion_document(const PHedron& phedron);
+
+/// The motion document of a design: one P-hedron keeps labels [i, c]; an
+/// assembly gets labels [member, i, c], member names and face members, over its
+/// separate or (with merge) merged mesh.
+MotionDocument motion_document(const Design& design);
 
 /// The JSON text for the given t. Throws Error(internal) rather than write a
 /// non-finite number.

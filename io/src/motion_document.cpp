@@ -4,6 +4,8 @@
 #include "phedra/number_format.h"
 #include "phedra/phedron.h"
 
+#include <memory>
+
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -100,6 +102,32 @@ std::string motion_json(const MotionDocument& d, const std::vector<double>& ts) 
   }
   out += "]}\n";
   return out;
+}
+
+MotionDocument motion_document(const Design& design) {
+  const Assembly& a = design.assembly;
+  if (a.member_count() == 1) {
+    MotionDocument d = motion_document(a.base());
+    d.kind = design.kind;
+    return d;
+  }
+  MotionDocument d;
+  d.name = a.name();
+  d.kind = design.kind;
+  d.t_star = a.t_star();
+  d.motion_case = to_string(a.base().motion_case());
+  d.t_lambda = a.flexion_interval().lower.t;
+  d.t_mu = a.flexion_interval().upper.t;
+  for (std::size_t m = 0; m < a.member_count(); ++m) d.members.push_back(a.member_name(m));
+  auto mesh = std::make_shared<AssemblyMesh>(panel_mesh(design));
+  for (const VertexRef& r : mesh->vertices) {
+    const GridTopology& g = a.topology(r.member);
+    d.labels.push_back({r.member, g.row_of(r.vertex), g.column_of(r.vertex)});
+  }
+  d.faces = mesh->faces;
+  d.face_members = mesh->face_member;
+  d.positions = [&a, mesh](double t, Points& out) { out = mesh->positions(a.evaluate(t)); };
+  return d;
 }
 
 }  // namespace phedra

@@ -1,12 +1,24 @@
-#include "phedra/atomic_file.h"
+#include "phedra/files.h"
 
 #include "phedra/errors.h"
 
 #include <random>
+#include <sstream>
 #include <system_error>
 
 namespace phedra {
 namespace fs = std::filesystem;
+
+std::string read_text_file(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IOError(path.string() + ": is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IOError(path.string() + ": cannot open for reading");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  if (in.bad()) throw IOError(path.string() + ": read error");
+  return buffer.str();
+}
 
 AtomicFile::AtomicFile(fs::path target) : target_(std::move(target)) {
   std::error_code ec;

@@ -1,0 +1,245 @@
+#include "repair_search.h"
+
+#include "phedra/design_preset.h"
+#include "phedra/errors.h"
+#include "phedra/panel_nets.h"
+#include "phedra/self_intersection.h"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+namespace phedra::repair_search {
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::pair<double, double> required_range(const Assembly& a, double fraction) {
+  const double t = a.t_star();
+  const FlexionInterval& f = a.flexion_interval();
+  if (fraction >= 1.0) return {f.lower.t, f.upper.t};
+  return {t - fraction * (t - f.lower.t), t + fraction * (f.upper.t - t)};
+}
+
+namespace {
+
+
+/// The positive-net constraint values of one face (<= 0 satisfied).
+std::array<double, slots_per_face> positive_net_values(const PanelNets& p, double size, double edge_target,
+                                                       double shape_target) {
+  std::array<double, slots_per_face> out{};
+  if (p.boundary) {
+    out[0] = shape_target - std::clamp(shape_margin(p), -1.0, 1.0);
+    return out;
+  }
+  for (int k = 0; k < 4; ++k) {
+    const Vec3 axial = p.axial[(k + 1) % 4] - p.axial[k];
+    const double length = axial.norm();
+    const double along = length > 0.0 ? (p.general[(k + 1) % 4] - p.general[k]).dot(axial) / length : 0.0;
+    out[k] = std::min(edge_target - along / size, 1.0);
+  }
+  const PanelNets axial_only{p.axial, p.axial, false, p.row, p.column, p.net_columns};
+  out[4] = shape_target - std::clamp(shape_margin(axial_only), -1.0, 1.0);
+  return out;
+}
+
+}  // namespace
+
+const std::vector<double>& Problem::at(const double* x) {
+  if (!cached_.empty() && std::equal(cached_x_.begin(), cached_x_.end(), x)) return cached_;
+  cached_x_.assign(x, x + variables_.size());
+  cached_.assign(constraints(), 1.0);  // a design that does not build violates everything
+  ++evaluations_;
+  try {
+    const Design d = design_from_json(variables_.preset_at(cached_x_));
+    const Assembly& a = d.assembly;
+    std::size_t k = 0;
+    for (std::size_t m = 0; m < a.member_count(); ++m) {
+      for (std::size_t f = 0; f < a.topology(m).face_count() && k < panels_; ++f, ++k) {
+        const PanelNets nets = panel_nets(a, m, f);
+        double* slot = &cached_[slots_per_face * k];
+        if (shapes_ == ShapeMode::exact) {
+          slot[0] = options_.shape_target - std::clamp(shape_margin(nets), -1.0, 1.0);
+          std::fill(slot + 1, slot + slots_per_face, 0.0);
+        } else {
+          const auto values = positive_net_values(nets, size_, options_.edge_target, options_.shape_target);
+          std::copy(values.begin(), values.end(), slot);
+        }
+      }
+    }
+    if (k != panels_) {
+      std::fill(cached_.begin(), cached_.end(), 1.0);  // another topology (a curve's segment count changed)
+      return cached_;
+    }
+    const std::size_t motion = slots_per_face * panels_;
+    cached_[motion] = cached_[motion + 1] = 0.0;
+    if (motion_) {
+      const auto [from, to] = required_range(a, fraction_);
+      const MotionMargins m = motion_margins(d, from, to, options_.motion_samples);
+      cached_[motion] = 10.0 * m.depth / size_;
+      cached_[motion + 1] = m.folded + 1e-6;  // a hinge must stay open inside the range
+    }
+  } catch (const Error&) {
+  }
+  return cached_;
+}
+
+namespace {
+
+struct Search {
+  const DesignVariables& variables;
+  Problem& problem;
+};
+
+double objective(unsigned n, const double* x, double* gradient, void* data) {
+  const Search& s = *static_cast<const Search*>(data);
+  double sum = 0.0;
+  for (unsigned k = 0; k < n; ++k) {
+    const DesignVariable& v = s.variables.variables()[k];
+    const double d = (x[k] - v.start) / v.scale;
+    sum += d * d;
+    if (gradient) gradient[k] = 2.0 * d / v.scale;
+  }
+  return sum;
+}
+
+/// The summed violations (an exact penalty: it reaches zero, where squares only
+/// approach it), what the feasibility phase drives to zero; the first point
+/// where they vanish ends the search (nlopt::forced_stop).
+struct Feasibility {
+  Search search;
+  std::vector<double> found;
+};
+
+double violation(unsigned n, const double* x, double* gradient, void* data) {
+  Feasibility& f = *static_cast<Feasibility*>(data);
+  const std::vector<double>& c = f.search.problem.at(x);
+  double sum = 0.0;
+  for (double v : c) sum += v > 0.0 ? v : 0.0;
+  (void)gradient;
+  if (sum == 0.0) {
+    f.found.assign(x, x + n);
+    throw nlopt::forced_stop();
+  }
+  return sum;
+}
+
+/// Bounds, steps and stopping rules shared by the local searches.
+void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<double>& x, const RepairOptions& options,
+               double seconds_left) {
+  const std::size_t n = variables.size();
+  std::vector<double> step(n), lower(n), upper(n), tolerance(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const DesignVariable& v = variables.variables()[k];
+    step[k] = 0.02 * v.scale;
+    const double reach = v.fixed ? 0.0 : v.kind == DesignVariable::Kind::turn ? 0.5 * std::numbers::pi : 0.5 * v.scale;
+    lower[k] = v.start - reach;
+    upper[k] = v.start + reach;
+    x[k] = std::clamp(x[k], lower[k], upper[k]);
+    tolerance[k] = 1e-7 * v.scale;
+  }
+  opt.set_lower_bounds(lower);
+  opt.set_upper_bounds(upper);
+  opt.set_initial_step(step);
+  opt.set_xtol_abs(tolerance);
+  opt.set_maxeval(static_cast<int>(options.max_evaluations));
+  opt.set_maxtime(std::max(1e-3, seconds_left));
+}
+
+void run_opt(nlopt::opt& opt, std::vector<double>& x) {
+  double value = 0.0;
+  try {
+    opt.optimize(x, value);
+  } catch (const nlopt::roundoff_limited&) {
+  } catch (const nlopt::forced_stop&) {
+  } catch (const std::runtime_error&) {  // NLopt's generic failure: keep where it stopped
+  }
+}
+
+/// The nearest point: Subplex on distance^2 + weight * summed violations (an
+/// exact penalty: for a large enough weight its minimum is the constrained one,
+/// and Subplex copes with its kinks), keeping the nearest feasible design seen.
+struct Nearest {
+  Search search;
+  double weight = 100.0;
+  std::vector<double> best;
+  double best_distance = std::numeric_limits<double>::infinity();
+};
+
+double penalized(unsigned n, const double* x, double* gradient, void* data) {
+  Nearest& s = *static_cast<Nearest*>(data);
+  const double distance = objective(n, x, gradient, &s.search);
+  double sum = 0.0;
+  for (double v : s.search.problem.at(x)) sum += v > 0.0 ? v : 0.0;
+  if (sum == 0.0 && distance < s.best_distance) {
+    s.best_distance = distance;
+    s.best.assign(x, x + n);
+  }
+  return distance + s.weight * sum;
+}
+
+}  // namespace
+
+double total_violation(Problem& problem, const std::vector<double>& x) {
+  double sum = 0.0;
+  for (double v : problem.at(x.data())) sum += v > 0.0 ? v : 0.0;
+  return sum;
+}
+
+std::vector<double> feasible_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                    const RepairOptions& options, double seconds_left, std::size_t evaluations) {
+  if (total_violation(problem, x) == 0.0) return x;
+  nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
+  Feasibility feasibility{{variables, problem}, {}};
+  opt.set_min_objective(violation, &feasibility);
+  configure(opt, variables, x, options, seconds_left);
+  opt.set_maxeval(static_cast<int>(evaluations));
+  run_opt(opt, x);
+  if (!feasibility.found.empty()) return feasibility.found;
+  return x;
+}
+
+std::vector<double> towards(Problem& problem, const std::vector<double>& feasible, const std::vector<double>& target) {
+  auto at = [&](double a) {
+    std::vector<double> x(feasible.size());
+    for (std::size_t k = 0; k < x.size(); ++k) x[k] = target[k] + a * (feasible[k] - target[k]);
+    return x;
+  };
+  double infeasible = 0.0, ok = 1.0;
+  for (int step = 0; step < 10; ++step) {
+    const double middle = 0.5 * (infeasible + ok);
+    (total_violation(problem, at(middle)) == 0.0 ? ok : infeasible) = middle;
+  }
+  return ok < 1.0 ? at(ok) : feasible;
+}
+
+std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                 const RepairOptions& options, double seconds_left, std::size_t evaluations) {
+  nlopt::opt opt(nlopt::LN_SBPLX, static_cast<unsigned>(variables.size()));
+  Nearest nearest{{variables, problem}, 100.0, {}, 0.0};
+  nearest.best = x;
+  nearest.best_distance = objective(static_cast<unsigned>(x.size()), x.data(), nullptr, &nearest.search);
+  opt.set_min_objective(penalized, &nearest);
+  configure(opt, variables, x, options, seconds_left);
+  opt.set_ftol_abs(1e-6);
+  opt.set_maxeval(static_cast<int>(evaluations));
+  run_opt(opt, x);
+  return nearest.best;
+}
+
+bool all_panels_simple(const Design& design) {
+  const Assembly& a = design.assembly;
+  for (std::size_t m = 0; m < a.member_count(); ++m) {
+    for (std::size_t f = 0; f < a.topology(m).face_count(); ++f) {
+      if (!(shape_margin(panel_nets(a, m, f)) > 0.0)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace phedra::repair_search

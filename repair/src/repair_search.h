@@ -1,0 +1,89 @@
+#pragma once
+// The optimizer's side of repair and of the keep-buildable drag (internal to
+// repair/): a design's constraint values as NLopt sees them, and the local
+// searches on them (feasibility, towards a target, the nearest feasible point).
+
+#include "phedra/design.h"
+#include "phedra/repair.h"
+
+#include <chrono>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace phedra::repair_search {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start);
+
+/// The required part of the interval: from t* this fraction of the way to each limit.
+std::pair<double, double> required_range(const Assembly& a, double fraction);
+
+/// How the panel shapes enter the constraints.
+enum class ShapeMode {
+  /// Every edge of the general net at least `edge_target` of the model size long
+  /// and pointing the way its axial edge does, and every axial face simple: then
+  /// every panel has its axial face's shape (MATH.md section 9). Stricter than
+  /// needed, but the edge lengths move continuously where the panel margins have
+  /// local minima (a sign change of an edge scale walks from row to row).
+  positive_net,
+  /// Every panel's shape margin at least `shape_target` (the exact rule).
+  exact,
+};
+
+constexpr std::size_t slots_per_face = 5;
+
+/// The optimizer's view of a design: its constraint values (<= 0 satisfied).
+class Problem {
+ public:
+  Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size)
+      : variables_(variables), options_(options), panels_(panels), size_(size) {}
+
+  void set_mode(ShapeMode shapes, bool motion, double fraction) {
+    shapes_ = shapes;
+    motion_ = motion;
+    fraction_ = fraction;
+    cached_.clear();
+  }
+  std::size_t constraints() const { return slots_per_face * panels_ + 2; }
+  std::size_t evaluations() const { return evaluations_; }
+
+  /// Constraint values at x: per member face its shape values (ShapeMode), then
+  /// the deepest penetration (x 10 over the model size) and the furthest hinge
+  /// past shut (radians) over the required motion (0 without the motion).
+  const std::vector<double>& at(const double* x);
+
+ private:
+  const DesignVariables& variables_;
+  const RepairOptions& options_;
+  std::size_t panels_;
+  double size_;
+  ShapeMode shapes_ = ShapeMode::exact;
+  bool motion_ = false;
+  double fraction_ = 1.0;
+  std::size_t evaluations_ = 0;
+  std::vector<double> cached_x_, cached_;
+};
+
+/// The summed violations of x (0: feasible).
+double total_violation(Problem& problem, const std::vector<double>& x);
+
+/// Feasibility: minimise the summed violations with Subplex (Nelder-Mead on
+/// subspaces: robust where the margins have kinks), stopping where they vanish.
+/// Returns the feasible point, or where the search ended.
+std::vector<double> feasible_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                    const RepairOptions& options, double seconds_left, std::size_t evaluations);
+
+/// The feasible point nearest `target` on the segment from `feasible` (found by
+/// bisection: the feasible part of the segment is taken as one piece).
+std::vector<double> towards(Problem& problem, const std::vector<double>& feasible, const std::vector<double>& target);
+
+/// One local search from the feasible x; returns the nearest feasible design it saw.
+std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
+                                 const RepairOptions& options, double seconds_left, std::size_t evaluations);
+
+/// Every panel a simple quad (MATH.md section 9).
+bool all_panels_simple(const Design& design);
+
+}  // namespace phedra::repair_search
