@@ -2,6 +2,7 @@
 // same panels named by every command and stored in every export, and the
 // shipped presets' buildability pinned.
 
+#include "support/test_files.h"
 #include "phedra/buildability.h"
 #include "support/cli_run.h"
 #include "phedra/design_preset.h"
@@ -14,6 +15,10 @@
 #include <regex>
 #include <unistd.h>
 
+using phedra::test::data;
+using phedra::test::presets;
+using phedra::test::read_json;
+
 using namespace phedra;
 using phedra::test::phedra_cli;
 using phedra::test::Run;
@@ -23,17 +28,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string data = PHEDRA_TEST_DATA_DIR;
-const std::string presets = PHEDRA_PRESETS_DIR;
 /// A random design (a reference case) with every kind of invalid panel.
 const std::string bow_ties = data + "/cases/open-mixed-tilted-axis.json";
 /// Simple panels; a hinge folds through below t = 0.2702.
 const std::string partly = data + "/partly-buildable.json";
-
-json read_json(const fs::path& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 /// The numbers of the invalid panels as `check --json` lists them.
 std::vector<std::size_t> invalid_of(const std::string& preset) {

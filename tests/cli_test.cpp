@@ -1,5 +1,6 @@
 // The `phedra` command, run in-process: outputs, exit codes and files.
 
+#include "support/test_files.h"
 #include "cli.h"
 #include "phedra/phedron.h"
 #include "phedra/preset.h"
@@ -11,6 +12,9 @@
 #include <fstream>
 #include <regex>
 #include <sstream>
+
+using phedra::test::data;
+using phedra::test::presets;
 
 using namespace phedra;
 using Catch::Matchers::Contains;
@@ -31,8 +35,6 @@ Run phedra_cli(const std::vector<std::string>& args) {
   return {code, out.str(), err.str()};
 }
 
-const std::string data = PHEDRA_TEST_DATA_DIR;
-const std::string presets = PHEDRA_PRESETS_DIR;
 
 fs::path scratch_directory() {
   const fs::path dir = fs::temp_directory_path() / ("phedra-cli-test-" + std::to_string(::getpid()));

@@ -24,9 +24,9 @@
 using namespace phedra;
 using Catch::Matchers::Contains;
 
-namespace {
+using phedra::test::uniform;
 
-double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+namespace {
 
 /// Heights of the two line families: u increasing, w decreasing and above u, so
 /// every grid vertex lies on the base vertex's side of the axis.

@@ -3,6 +3,7 @@
 // every side with one tab, labels inside their panel or tab and apart, nothing
 // overlapping or off the page; PDF, SVG, PNG and DXF; one test per message.
 
+#include "support/test_files.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/cut_sheets.h"
 #include "phedra/fold_export.h"
@@ -17,6 +18,8 @@
 #include <set>
 #include <unistd.h>
 
+using phedra::test::presets;
+
 using namespace phedra;
 using phedra::test::phedra_cli;
 using Catch::Matchers::Contains;
@@ -24,7 +27,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string presets = PHEDRA_PRESETS_DIR;
 
 std::vector<std::string> shipped_presets() {
   std::vector<std::string> out;

@@ -1,6 +1,7 @@
 // Metamaterial figures (issue 7, item 4): enclosed volume, extents, deployment
 // and Poisson's ratios, and phedra metrics.
 
+#include "support/test_files.h"
 #include "support/cli_run.h"
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/plot_axes.h"
@@ -15,6 +16,8 @@
 #include <fstream>
 #include <sstream>
 
+using phedra::test::presets;
+
 using namespace phedra;
 using test::phedra_cli;
 using test::Run;
@@ -23,7 +26,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string presets = PHEDRA_PRESETS_DIR;
 
 std::string read(const fs::path& p) {
   std::ifstream in(p);

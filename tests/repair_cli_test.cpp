@@ -1,6 +1,7 @@
 // phedra repair as a user runs it (issue 14): one test per message, the
 // repaired preset checked by `phedra check`, nothing written on failure.
 
+#include "support/test_files.h"
 #include "support/cli_run.h"
 
 #include <catch2/catch.hpp>
@@ -10,6 +11,10 @@
 #include <fstream>
 #include <unistd.h>
 
+using phedra::test::data;
+using phedra::test::presets;
+using phedra::test::read_json;
+
 using phedra::test::phedra_cli;
 using phedra::test::Run;
 using Catch::Matchers::Contains;
@@ -18,8 +23,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string data = PHEDRA_TEST_DATA_DIR;
-const std::string presets = PHEDRA_PRESETS_DIR;
 /// A parallelogram tube with monotone heights: four bow-ties, repaired in well under a second.
 const std::string repairable = data + "/repairable-tube.json";
 
@@ -29,11 +32,6 @@ struct TempDir {
   ~TempDir() { fs::remove_all(path); }
   std::string operator/(const std::string& name) const { return (path / name).string(); }
 };
-
-json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 }  // namespace
 

@@ -3,6 +3,7 @@
 // the buildability report itself (not by the optimizer's figures) and compared
 // with its input: only the varied fields changed, every tie kept.
 
+#include "support/test_files.h"
 #include "phedra/buildability.h"
 #include "phedra/errors.h"
 #include "phedra/preset.h"
@@ -21,17 +22,14 @@
 #include <random>
 #include <string>
 
+using phedra::test::presets;
+using phedra::test::read_json;
+
 using namespace phedra;
 using json = nlohmann::json;
 
 namespace {
 
-const std::string presets = PHEDRA_PRESETS_DIR;
-
-json read_json(const std::string& path) {
-  std::ifstream in(path);
-  return json::parse(in);
-}
 
 /// Whether `pointer` (a JSON pointer of a number) lies in a varied group.
 bool may_change(const std::string& pointer, const std::vector<VariableGroup>& vary) {
@@ -217,11 +215,19 @@ Tally repair_batch(const std::function<std::optional<json>(int)>& draw, std::siz
   return tally;
 }
 
+/// Designs a batch: PHEDRA_REPAIR_DESIGNS when set; 200 with PHEDRA_LONG_TESTS=1
+/// (the success rates docs/design.md reports); 3 under the sanitizers (ASan
+/// makes a sweep about 10x slower); else 30 (the README's test command, CI).
+std::size_t designs_a_batch() {
+  if (const char* n = std::getenv("PHEDRA_REPAIR_DESIGNS")) return static_cast<std::size_t>(std::atoi(n));
+  const char* long_tests = std::getenv("PHEDRA_LONG_TESTS");
+  if (long_tests && std::string(long_tests) == "1") return 200;
 #ifdef PHEDRA_SANITIZE_BUILD
-constexpr std::size_t designs_a_batch = 3;  // ASan makes a sweep about 10x slower
+  return 3;
 #else
-constexpr std::size_t designs_a_batch = 100;
+  return 30;
 #endif
+}
 
 }  // namespace
 
@@ -230,7 +236,7 @@ TEST_CASE("repair: disturbed shipped presets (a user's edit gone wrong) become b
           "[repair]") {
   std::mt19937_64 rng(20261202);
   const Tally t = repair_batch([&](int k) { return std::optional<json>(disturbed_preset(rng, k)); },
-                               env_count("PHEDRA_REPAIR_DESIGNS", designs_a_batch));
+                               designs_a_batch());
   CHECK(t.repaired * 10 >= t.tried * 7);
 }
 
@@ -239,6 +245,6 @@ TEST_CASE("repair: random unbuildable designs (open of every sign pattern, paral
           "[repair]") {
   std::mt19937_64 rng(20261203);
   const Tally t = repair_batch([&](int k) { return random_unbuildable(rng, k); },
-                               env_count("PHEDRA_REPAIR_DESIGNS", designs_a_batch));
+                               designs_a_batch());
   CHECK(t.repaired * 5 >= t.tried);
 }

@@ -2,6 +2,7 @@
 // sweep against a brute-force search on random designs and the shipped presets,
 // and the command line (phedra intersections, generate --no-self-intersection).
 
+#include "support/test_files.h"
 #include "support/cli_run.h"
 #include "phedra/errors.h"
 #include "phedra/self_intersection.h"
@@ -18,6 +19,9 @@
 #include <numbers>
 #include <sstream>
 
+using phedra::test::data;
+using phedra::test::presets;
+
 using namespace phedra;
 using test::phedra_cli;
 using test::Run;
@@ -26,8 +30,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string data = PHEDRA_TEST_DATA_DIR;
-const std::string presets = PHEDRA_PRESETS_DIR;
 
 Triangle tri(Vec3 a, Vec3 b, Vec3 c) { return {a, b, c}; }
 

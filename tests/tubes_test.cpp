@@ -17,9 +17,9 @@
 using namespace phedra;
 using Catch::Matchers::Contains;
 
-namespace {
+using phedra::test::uniform;
 
-double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+namespace {
 
 /// Four heights with consecutive (cyclic) triples pairwise distinct; symmetric
 /// (z3 = z0 + z2 - z1) for anti-parallelograms unless `asymmetric`.

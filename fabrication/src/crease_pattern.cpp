@@ -12,7 +12,6 @@
 namespace phedra {
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// A face's normal at the folded state, turned to agree with the viewer's side at the flat state.
 Vec3 oriented_normal(const Quad& q, const Points& x, const std::vector<Vec2>& flat) {

@@ -10,12 +10,6 @@
 namespace phedra {
 namespace {
 
-std::string n(double x) {
-  // Sheets are in mm: a ten-thousandth of a millimetre is finer than any cutter.
-  const double r = std::round(x * 1e4) / 1e4;
-  return format_number(r == 0.0 ? 0.0 : r);
-}
-
 const char* dxf_layer(LineStyle style) {
   switch (style) {
     case LineStyle::cut: return "CUT";
@@ -54,16 +48,16 @@ std::string cut_sheets_dxf(const CutSheets& s) {
     const Vec2 shift(static_cast<double>(k) * (s.page.x() + 10.0), 0.0);
     auto line = [&](const char* layer, Vec2 a, Vec2 b) {
       a += shift, b += shift;
-      dxf << "0\nLINE\n8\n" << layer << "\n10\n" << n(a.x()) << "\n20\n" << n(a.y()) << "\n30\n0\n11\n" << n(b.x())
-          << "\n21\n" << n(b.y()) << "\n31\n0\n";
+      dxf << "0\nLINE\n8\n" << layer << "\n10\n" << sheet_number(a.x()) << "\n20\n" << sheet_number(a.y()) << "\n30\n0\n11\n" << sheet_number(b.x())
+          << "\n21\n" << sheet_number(b.y()) << "\n31\n0\n";
     };
     const Vec2 c0(0, 0), c1(s.page.x(), 0), c2 = s.page, c3(0, s.page.y());
     line("FRAME", c0, c1), line("FRAME", c1, c2), line("FRAME", c2, c3), line("FRAME", c3, c0);
     for (const SheetLine& l : s.pages[k].lines) line(dxf_layer(l.style), l.a, l.b);
     for (const SheetText& t : s.pages[k].texts) {
       const Vec2 at = t.box.origin + shift;
-      dxf << "0\nTEXT\n8\nLABELS\n10\n" << n(at.x()) << "\n20\n" << n(at.y()) << "\n30\n0\n40\n" << n(t.box.height)
-          << "\n1\n" << t.text << "\n50\n" << n(std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI) << "\n";
+      dxf << "0\nTEXT\n8\nLABELS\n10\n" << sheet_number(at.x()) << "\n20\n" << sheet_number(at.y()) << "\n30\n0\n40\n" << sheet_number(t.box.height)
+          << "\n1\n" << t.text << "\n50\n" << sheet_number(std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI) << "\n";
     }
   }
   dxf << "0\nENDSEC\n0\nEOF\n";

@@ -18,12 +18,6 @@ namespace {
 
 constexpr double footer_mm = 6.0;
 
-std::string six(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
 /// A rigid motion of the sheet: p -> origin + s * axis + t * up for p's coordinates (s, t) in `from`.
 struct Placement {
   Box2 from;      ///< the piece's box in piece coordinates
@@ -67,7 +61,7 @@ Placement fitting(const std::vector<Vec2>& points, const Box2& content) {
     }
     if (try_box(Box2{s0 * axis + t0 * up, axis, s1 - s0, t1 - t0}, out)) return out;
   }
-  throw Error(ExitCode::internal, "a piece of " + six(smallest.width) + " x " + six(smallest.height) +
+  throw Error(ExitCode::internal, "a piece of " + format_significant(smallest.width) + " x " + format_significant(smallest.height) +
                                       " mm fits the page in no direction");
 }
 

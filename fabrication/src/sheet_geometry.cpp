@@ -7,7 +7,6 @@
 namespace phedra {
 namespace {
 
-double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Smallest projection overlap of a and b over the edge normals of `edges`.
 double overlap_along_edges(const Polygon2& edges, const Polygon2& a, const Polygon2& b) {
@@ -32,6 +31,8 @@ double distance_to_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
 }
 
 }  // namespace
+
+double cross(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double signed_area2(const Polygon2& polygon) {
   double area = 0.0;

@@ -12,12 +12,6 @@
 namespace phedra {
 namespace {
 
-std::string n(double x) {
-  // Sheets are in mm: a thousandth of a millimetre is finer than any cutter.
-  const double r = std::round(x * 1e4) / 1e4;
-  return format_number(r == 0.0 ? 0.0 : r);
-}
-
 std::string escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -85,13 +79,13 @@ double round_down_125(double x) {
   return p;
 }
 
-std::string six(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
-
 }  // namespace
+
+std::string sheet_number(double x) {
+  // Sheets are in mm: a ten-thousandth of a millimetre is finer than any cutter (and of a degree, any angle).
+  const double r = std::round(x * 1e4) / 1e4;
+  return format_number(r == 0.0 ? 0.0 : r);
+}
 
 double font_size_for_capitals(double h) { return h / 0.72; }
 
@@ -150,16 +144,16 @@ void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest) {
   page.lines.push_back(SheetLine{at + Vec2(0, 1.0), at + Vec2(bar, 1.0), LineStyle::cut});
   page.lines.push_back(SheetLine{at, at + Vec2(0, 2.0), LineStyle::cut});
   page.lines.push_back(SheetLine{at + Vec2(bar, 0), at + Vec2(bar, 2.0), LineStyle::cut});
-  add_text(page, six(bar) + " mm = " + six(bar / scale) + " model units", at + Vec2(bar + 3.0, 0.0), 2.2, TextRole::note);
+  add_text(page, format_significant(bar) + " mm = " + format_significant(bar / scale) + " model units", at + Vec2(bar + 3.0, 0.0), 2.2, TextRole::note);
 }
 
 std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title) {
   const double H = size.y();
-  auto X = [](const Vec2& p) { return n(p.x()); };
-  auto Y = [H](const Vec2& p) { return n(H - p.y()); };
+  auto X = [](const Vec2& p) { return sheet_number(p.x()); };
+  auto Y = [H](const Vec2& p) { return sheet_number(H - p.y()); };
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << n(size.x()) << "mm\" height=\"" << n(H)
-      << "mm\" viewBox=\"0 0 " << n(size.x()) << ' ' << n(H) << "\">\n<title>" << escape(title)
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << sheet_number(size.x()) << "mm\" height=\"" << sheet_number(H)
+      << "mm\" viewBox=\"0 0 " << sheet_number(size.x()) << ' ' << sheet_number(H) << "\">\n<title>" << escape(title)
       << "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (const SheetFill& f : page.fills) {
     svg << "<polygon fill=\"" << svg_fill(f.style) << '"';
@@ -177,10 +171,10 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
   for (const SheetText& t : page.texts) {
     const double degrees = std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI;
     svg << "<text x=\"" << X(t.box.origin) << "\" y=\"" << Y(t.box.origin) << "\" font-size=\""
-        << n(font_size_for_capitals(t.box.height)) << "\" textLength=\"" << n(t.box.width)
+        << sheet_number(font_size_for_capitals(t.box.height)) << "\" textLength=\"" << sheet_number(t.box.width)
         << "\" lengthAdjust=\"spacingAndGlyphs\" fill=\"" << text_colour(t.role) << '"'
         << (t.role == TextRole::title ? " font-weight=\"bold\"" : "");
-    if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << n(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
+    if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << sheet_number(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
     svg << '>' << escape(t.text) << "</text>\n";
   }
   svg << "</g>\n</svg>\n";

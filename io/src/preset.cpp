@@ -13,7 +13,6 @@ namespace {
 
 using nlohmann::json;
 
-std::string type_name(const json& value) { return value.type_name(); }
 
 const json& required(const json& preset, const char* key) {
   auto it = preset.find(key);
@@ -30,7 +29,7 @@ const std::vector<std::string>& core_keys() {
 }  // namespace
 
 ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
-  if (!preset.is_object()) throw InvalidInputError("", "a preset must be a JSON object, got " + type_name(preset));
+  if (!preset.is_object()) throw InvalidInputError("", "a preset must be a JSON object, got " + std::string(preset.type_name()));
   std::vector<std::string> known = core_keys();
   known.insert(known.end(), keys.extra.begin(), keys.extra.end());
   for (const auto& [key, value] : preset.items()) {
@@ -42,7 +41,7 @@ ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
   }
   ControlPolylines input;
   if (auto it = preset.find("name"); it != preset.end()) {
-    if (!it->is_string()) throw InvalidInputError("name", "expected a string, got " + type_name(*it));
+    if (!it->is_string()) throw InvalidInputError("name", "expected a string, got " + std::string(it->type_name()));
     input.name = it->get<std::string>();
   }
   if (auto it = preset.find("axis"); it != preset.end()) input.axis = json_vector(*it, "axis");
@@ -74,7 +73,7 @@ ControlPolylines preset_from_json(const json& preset, const PresetKeys& keys) {
   if (keys.require_profile || preset.contains("signs")) {
     const json& signs = required(preset, "signs");
     if (!signs.is_string()) {
-      throw InvalidInputError("signs", "expected a string of '+' and '-', got " + type_name(signs));
+      throw InvalidInputError("signs", "expected a string of '+' and '-', got " + std::string(signs.type_name()));
     }
     input.signs = signs_from_string(signs.get<std::string>());
   }

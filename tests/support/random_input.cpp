@@ -6,9 +6,10 @@
 #include <cmath>
 
 namespace phedra::test {
-namespace {
 
 double uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+namespace {
 
 Vec3 horizontal(double angle) { return Vec3(std::cos(angle), std::sin(angle), 0.0); }
 

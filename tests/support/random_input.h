@@ -15,6 +15,9 @@
 
 namespace phedra::test {
 
+/// A uniform random number in [lo, hi).
+double uniform(std::mt19937_64& rng, double lo, double hi);
+
 struct RandomInputShape {
   std::size_t strips = 5;          ///< m (profiles: m + 1)
   std::size_t profile_vertices = 4;  ///< n (apexes: n + 1)

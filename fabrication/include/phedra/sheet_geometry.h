@@ -24,6 +24,9 @@ std::vector<Polygon2> convex_parts(const Polygon2& polygon);
 /// convex_overlap over the convex parts of two simple polygons (max over pairs).
 double polygon_overlap(const Polygon2& a, const Polygon2& b);
 
+/// The z of the cross product of two plane vectors (> 0: b is counter-clockwise from a).
+double cross(const Vec2& a, const Vec2& b);
+
 /// Twice the signed area (> 0 counter-clockwise).
 double signed_area2(const Polygon2& polygon);
 

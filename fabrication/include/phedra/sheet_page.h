@@ -72,6 +72,9 @@ class Legend {
 void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest);
 
 /// Renderers. `title` goes to the SVG's <title> and the PDF's metadata.
+/// A number of a page (a length in mm, an angle in degrees) as text, to four decimals.
+std::string sheet_number(double x);
+
 std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title);
 std::string pages_pdf(const std::vector<SheetPage>& pages, Vec2 size, const std::string& title);
 std::string page_png(const SheetPage& page, Vec2 size, double dpi = 150.0);
