@@ -1,10 +1,19 @@
 // Mountain and valley: the hinges of a glTF export (either layout) coloured by the sign
-// of their fold at the shown pose (FOLD's convention: valley positive), and the
-// dihedral angle of one hinge over the whole motion.
+// of their fold at the shown pose (FOLD's convention: valley positive), dimmed
+// where both their panels turn their back to the camera, and the dihedral
+// angle of one hinge over the whole motion.
 import * as THREE from 'three';
 import { primitivePanels } from './outline.js';
 
-export const foldColours = { mountain: 0xff7043, valley: 0x42a5f5 };
+// Light orange and light sky blue: a pair the three kinds of colour blindness
+// tell apart (blue against orange), of about the same lightness, so that valleys
+// stand out as much as mountains on the (darkened) panels and stay apart from
+// the dark panel edges (contrast of either about 2 : 1 or more on every member
+// colour of the shipped arrays, checked on screenshots; the old blue #42a5f5
+// was 1.04 : 1 on the blue panels).
+export const foldColours = { mountain: 0xffb347, valley: 0x7fd1ff };
+/// The hinges on panels seen from behind: as dark as the back faces are.
+export const backFactor = 0.4;
 
 const a = new THREE.Vector3(), b = new THREE.Vector3(), c = new THREE.Vector3();
 
@@ -54,30 +63,62 @@ class FoldsBase {
     this.hinges = hingesOf(panels);
     this.frame = frame;  // positions are in this object's space
     this.signs = new Int8Array(this.hinges.length);
+    this.back = new Uint8Array(this.hinges.length);  // 1: both panels turn their back to the camera
+    this.normals = new Float32Array(3 * panels.length);
+    this.eye = null;  // the camera, to dim the hinges of panels seen from behind
   }
+
+  /// The camera whose view dims the hinges on back faces (null: none dimmed).
+  watch(camera) { this.eye = camera; }
 
   /// Fold angle of hinge `h` in degrees at positions `x` (valley > 0).
   angle(h, x) {
     return foldAngle(this.panels[h.f], this.panels[h.g], h.from, h.to, x);
   }
 
-  /// Colours the hinges by their fold at the shown pose; {mountains, valleys}.
+  /// Which panels face the camera at positions x: 1 a panel that does (or when no camera is watched).
+  facing(x) {
+    const out = new Uint8Array(this.panels.length).fill(1);
+    if (!this.eye) return out;
+    this.frame.updateMatrixWorld(true);
+    const eye = this.frame.worldToLocal(this.eye.getWorldPosition(new THREE.Vector3()));
+    this.panels.forEach((p, f) => {
+      const n = normal(p, x, c), i = 3 * p[0];
+      out[f] = n.x * (eye.x - x[i]) + n.y * (eye.y - x[i + 1]) + n.z * (eye.z - x[i + 2]) >= 0 ? 1 : 0;
+    });
+    return out;
+  }
+
+  /// Colours the hinges by their fold at the shown pose, dimmed where both panels
+  /// turn their back to the camera; {mountains, valleys}.
   update() {
     const x = this.shownPositions();
+    const facing = this.facing(x);
     let changed = false, mountains = 0, valleys = 0;
     this.hinges.forEach((h, k) => {
       const angle = this.angle(h, x);
       const sign = Math.abs(angle) < 1e-6 ? 0 : angle > 0 ? 1 : -1;
-      if (sign !== this.signs[k]) { this.signs[k] = sign; changed = true; }
+      const back = facing[h.f] || facing[h.g] ? 0 : 1;
+      if (sign !== this.signs[k] || back !== this.back[k]) { this.signs[k] = sign; this.back[k] = back; changed = true; }
       if (sign < 0) ++mountains; else if (sign > 0) ++valleys;
     });
     if (changed) {
-      const m = [], v = [];
-      this.hinges.forEach((h, k) => { if (this.signs[k] < 0) m.push(h.from, h.to); else if (this.signs[k] > 0) v.push(h.from, h.to); });
-      this.mountain.geometry.setIndex(m);
-      this.valley.geometry.setIndex(v);
+      const lists = [[], [], [], []];  // mountain, valley, mountain behind, valley behind
+      this.hinges.forEach((h, k) => {
+        if (this.signs[k]) lists[(this.signs[k] < 0 ? 0 : 1) + 2 * this.back[k]].push(h.from, h.to);
+      });
+      [this.mountain, this.valley, this.mountainBack, this.valleyBack].forEach((line, j) => line.geometry.setIndex(lists[j]));
     }
     return { mountains, valleys };
+  }
+
+  /// The four line sets (mountain, valley, and both dimmed) made by `line(colour)`.
+  makeLines(line) {
+    const dim = (hex) => new THREE.Color(hex).multiplyScalar(backFactor);
+    this.mountain = line(foldColours.mountain);
+    this.valley = line(foldColours.valley);
+    this.mountainBack = line(dim(foldColours.mountain));
+    this.valleyBack = line(dim(foldColours.valley));
   }
 
   /// The hinge nearest a point of the surface (world space): its index, or -1.
@@ -130,8 +171,7 @@ class MorphFolds extends FoldsBase {
       this.mesh.add(l);
       return l;
     };
-    this.mountain = line(foldColours.mountain);
-    this.valley = line(foldColours.valley);
+    this.makeLines(line);
     this.positions = new Float32Array(geometry.getAttribute('position').array.length);
   }
 
@@ -171,8 +211,7 @@ class NodeFolds extends FoldsBase {
       gltf.scene.add(l);
       return l;
     };
-    this.mountain = line(foldColours.mountain);
-    this.valley = line(foldColours.valley);
+    this.makeLines(line);
     this.inverse = new THREE.Matrix4();
   }
 

@@ -109,9 +109,3 @@ export function groundGrid(box, up = 'y') {
   }
   return { grid, cell };
 }
-
-/// A report's text for the page: numbers with more than 6 significant digits
-/// (the command's full precision) shortened to 6 (the saved files keep them all).
-export function readableNumbers(text) {
-  return text.replace(/-?\d+\.\d{6,}(e[-+]?\d+)?/g, (x) => String(Number(Number(x).toPrecision(6))));
-}

@@ -1,26 +1,32 @@
-// phedra viewer: loads /model.glb (written by `phedra generate`), plays its
-// folding animation back and forth, and lets the user scrub, step, jump to t*
+// phedra viewer: loads /model.glb (written by `phedra generate`), shows it at
+// t* (paused: Play starts the folding animation, back and forth), and lets the
+// user scrub (marks at t_lambda, t* and t_mu under the slider), step, jump to t*
 // or a limit, type a t, change the speed, fit the view and save a picture.
 // The motion parameter t shown is the glTF time mapped back through the
 // export's extras (time_map: time is linear in t but at the flexion limits).
+// Every number on the page is written one way (4 significant digits).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { createStage } from './scene.js';
 import { addPanelOutlines } from './outline.js';
 import { Folds, foldColours } from './folds.js';
 import { tAtTime, timeOfT } from './time_map.js';
-import { clampToCore, expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox, readableNumbers } from './framing.js';
+import { clampToCore, expandByShownVertices, forEachShownVertex, frameBox, groundGrid, isModelMesh, motionBox } from './framing.js';
+import { foldAnglePlot } from './plot.js';
+import { baseName, canonicalPreset, pageTitle, significant4 as format, statusSummary } from './text.js';
 
 const $ = (id) => document.getElementById(id);
 const { renderer, scene, camera, controls } = createStage();
 
-/// 4 significant digits (no 16-digit noise on screen).
-const format = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
-  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : Number(x.toPrecision(4)).toString());
+// The member colours of the file, darkened on screen (linear factor; about 2/3 in
+// sRGB): light hinge lines of both colours stand out on every member colour.
+const memberShade = 0.42;
 
 let gltf = null, mixer = null, action = null, info = {}, times = [], duration = 0;
-let position = 0, direction = 1, playing = true, box = null, outlines = { edges: 0, invalid: 0 };
-let folds = null, foldCounts = { mountains: 0, valleys: 0 }, foldsShownAt = -1, picked = -1, marker = null;
+let position = 0, direction = 1, playing = false, box = null, outlines = { edges: 0, invalid: 0 };
+let folds = null, foldCounts = { mountains: 0, valleys: 0 }, foldsShownAt = -1, picked = -1, marker = null, plotAxis = null;
+let fileName = null;    // the name of the file shown, when known (a file opened)
+let presetFile = null;  // the shipped preset it is an export of, when known (the menu, or recognised)
 
 /// t at animation time `seconds`: by the file's time map (linear in t but at
 /// the flexion limits); older files: piecewise linear between keyframes.
@@ -69,7 +75,8 @@ function show(seconds) {
     foldCounts = folds.update();
     $('folds').innerHTML = `hinges at this t: <span style="color:#${foldColours.mountain.toString(16)}">` +
       `${foldCounts.mountains} mountain</span>, <span style="color:#${foldColours.valley.toString(16)}">` +
-      `${foldCounts.valleys} valley</span>, the rest flat or boundary (dark); click a hinge for its fold angle over the motion`;
+      `${foldCounts.valleys} valley</span> (dimmed on panels seen from behind), the rest flat or boundary (dark); ` +
+      'click a hinge for its fold angle over the motion';
   }
   if (picked >= 0) showPicked(t);
 }
@@ -88,11 +95,10 @@ function showPicked(t) {
     cursor.setAttribute('x2', x);
   }
 }
-const plot = { width: 330, height: 122, left: 34, right: 6, top: 18, bottom: 18 };
-const plotX = (t) => plot.left + (t - info.t_lambda) / (info.t_mu - info.t_lambda) * (plot.width - plot.left - plot.right);
-const plotY = (angle) => plot.top + (180 - angle) / 360 * (plot.height - plot.top - plot.bottom);
+let plotX = () => 0;
 
-/// Picks the hinge nearest `point` (on the surface) and plots its fold angle over the motion.
+/// Picks the hinge nearest `point` (on the surface) and plots its fold angle over
+/// the motion, on an axis scaled to the angles it takes.
 function pickHinge(point) {
   picked = folds.hingeNear(point);
   if (picked < 0) return;
@@ -108,24 +114,44 @@ function pickHinge(point) {
     samples.push([tAt(seconds), folds.angle(folds.hinges[picked], folds.shownPositions())]);
   }
   setTime(keep);
-  const svg = ['<svg xmlns="http://www.w3.org/2000/svg" width="330" height="122" role="img" aria-label="fold angle over the motion">',
-               `<text x="${plot.left}" y="9" font-size="10" fill="#9fb3c8">fold angle (degrees, valley &gt; 0) against t</text>`];
-  for (const a of [-180, -90, 0, 90, 180]) {
-    svg.push(`<line x1="${plot.left}" x2="${plot.width - plot.right}" y1="${plotY(a)}" y2="${plotY(a)}" stroke="#3a434e"/>`,
-             `<text x="${plot.left - 4}" y="${plotY(a) + 4}" text-anchor="end" font-size="10" fill="#9fb3c8">${a}</text>`);
-  }
-  svg.push(`<polyline fill="none" stroke="#ffeb3b" stroke-width="1.5" points="${samples.map(([t, a]) => `${plotX(t).toFixed(1)},${plotY(a).toFixed(1)}`).join(' ')}"/>`,
-           `<line class="cursor" y1="${plot.top}" y2="${plot.height - plot.bottom}" stroke="#e8e8e8" stroke-dasharray="3 2"/>`,
-           `<text x="${plot.left}" y="${plot.height - 4}" font-size="10" fill="#9fb3c8">${format(info.t_lambda)} (t&#955;)</text>`,
-           `<text x="${plot.width - plot.right}" y="${plot.height - 4}" text-anchor="end" font-size="10" fill="#9fb3c8">(t&#956;) ${format(info.t_mu)}</text>`,
-           '</svg>');
-  $('hinge-plot').innerHTML = svg.join('');
+  const plot = foldAnglePlot(samples, { tLambda: info.t_lambda, tMu: info.t_mu, tStar: info.t_star, format });
+  plotX = plot.x;
+  plotAxis = plot.axis;
+  $('hinge-plot').innerHTML = plot.svg;
   showPicked(tAt(position));
 }
 
 function setPlaying(on) {
   playing = on;
   $('play').textContent = playing ? 'Pause' : 'Play';
+}
+
+/// Marks under the slider at t_lambda, t* and t_mu (where the animation shows them
+/// first), at the thumb's centre for that time (it runs from half a thumb, 8 px,
+/// to the width less half a thumb).
+function showMarks() {
+  const marks = $('marks');
+  marks.textContent = '';
+  if (!duration) return;
+  const at = { lo: timeOf(info.t_lambda), star: timeOf(info.t_star), hi: timeOf(info.t_mu) };
+  const fraction = (seconds) => Math.min(1, Math.max(0, seconds / duration));
+  for (const [key, label, t] of [['lo', 't\u03bb', info.t_lambda], ['star', 't*', info.t_star], ['hi', 't\u03bc', info.t_mu]]) {
+    if (at[key] === null || at[key] === undefined) continue;
+    const mark = document.createElement('span');
+    mark.className = `mark ${key}`;
+    mark.dataset.seconds = String(at[key]);
+    mark.style.left = `calc(8px + ${fraction(at[key]).toFixed(4)} * (100% - 16px))`;
+    mark.title = `${label} = ${format(t)}`;
+    mark.textContent = label;
+    marks.append(mark);
+  }
+  // t* next to a limit: its label goes one line down rather than over the limit's.
+  const star = marks.querySelector('.star');
+  if (star) {
+    const r = star.getBoundingClientRect();
+    const near = [...marks.querySelectorAll('.lo, .hi')].some((m) => { const q = m.getBoundingClientRect(); return q.left < r.right + 2 && r.left < q.right + 2; });
+    star.classList.toggle('lower', near);
+  }
 }
 
 /// Frames the whole motion in the part of the canvas the panel leaves free.
@@ -188,9 +214,11 @@ async function exportFold() {
   download(`${info.name ?? 'phedra'}.fold`, designer.fold(41), 'application/json');
   designer.delete();
 }
-/// Hands a preset to the designer page (same origin) and opens it there.
-function openInDesigner(text) {
+/// Hands a preset to the designer page (same origin) and opens it there (`file`: its file's name, if known).
+function openInDesigner(text, file = null) {
   sessionStorage.setItem('phedra-open-preset', text);
+  if (file) sessionStorage.setItem('phedra-open-preset-file', file);
+  else sessionStorage.removeItem('phedra-open-preset-file');
   location.href = '/designer.html';
 }
 
@@ -242,6 +270,8 @@ function clearModel() {
   times = [];
   duration = position = 0;
   direction = 1;
+  setPlaying(false);
+  $('marks').textContent = '';
   for (const id of ['restricted', 'legend', 'message', 'buildability', 'fraction']) $(id).textContent = '';
 }
 
@@ -252,10 +282,18 @@ function showModel(loaded) {
   const json = gltf.parser.json;
   info = json.asset.extras?.phedra ?? {};
   scene.add(gltf.scene);
+  const shaded = new Set();
+  gltf.scene.traverse((o) => {
+    if (!o.isMesh || shaded.has(o.material)) return;
+    shaded.add(o.material);
+    o.material.color.multiplyScalar(memberShade);
+  });
   outlines = addPanelOutlines(gltf, info.buildability?.invalid_panels ?? []);
   folds = Folds.of(gltf);
+  folds?.watch(camera);
   foldsShownAt = -1;
-  $('title').textContent = info.name ?? 'phedra';
+  plotAxis = null;
+  showTitle();
   $('kind').textContent = info.kind ?? '';
   $('lo').textContent = format(info.t_lambda);
   $('hi').textContent = format(info.t_mu);
@@ -265,10 +303,11 @@ function showModel(loaded) {
   if (info.animated_interval) {
     $('restricted').textContent = `animated: the intersection-free part [${format(info.animated_interval[0])}, ${format(info.animated_interval[1])}]`;
   }
-  // What the command said of the design when it wrote the file (docs/design.md, Buildable designs).
+  // What the command said of the design when it wrote the file (docs/design.md, Buildable designs),
+  // in the page's numbers, without the interval shown above.
   if (info.buildability) {
     const b = info.buildability;
-    $('buildability').textContent = readableNumbers(b.summary) + (outlines.invalid ? ' (invalid panels in red)' : '');
+    $('buildability').textContent = statusSummary(b.summary, format) + (outlines.invalid ? ' (invalid panels in red)' : '');
     $('buildability').style.color = b.buildable ? '#a5d6a7' : '#ffcc80';
   }
   for (const id of presetActions) $(id).disabled = !info.preset;
@@ -289,6 +328,7 @@ function showModel(loaded) {
     box = motionBox(gltf.scene, setTime, times.filter((_, k) => k % every === 0 || k === times.length - 1));
     show(timeOf(info.t_star) ?? 0);
     box = clampToCore(box, expandByShownVertices(new THREE.Box3(), gltf.scene));
+    showMarks();
   } else {
     box = expandByShownVertices(new THREE.Box3(), gltf.scene);
     for (const id of timelineControls) $(id).disabled = true;
@@ -305,12 +345,39 @@ function showModel(loaded) {
     (animated ? `, ${times.length} keyframes, ${format(duration)} s` : ', static');
   window.phedraViewer.ready = true;
   window.phedraViewer.loads += 1;
+  if (!fileName && !presetFile) recognisePreset();
 }
 
 function failed(error) {
   $('status').textContent = `cannot load the model: ${error.message ?? error}`;
   console.error(error);
 }
+/// The title: the preset's name, and the file when it says more (the tab's title too).
+function showTitle() {
+  const title = pageTitle({ name: info.name, file: fileName, page: 'phedra viewer' });
+  const stem = (presetFile ?? '').replace(/\.json$/, '');
+  $('title').textContent = title.name;
+  $('file').textContent = title.file || (presetFile && stem !== title.name ? `export of ${presetFile}` : '');
+  document.title = title.document;
+}
+
+/// The shipped preset the shown file is an export of (the server says not which
+/// file it serves as /model.glb, but a shipped preset is recognised).
+async function recognisePreset() {
+  if (!info.preset) return;
+  try {
+    const wanted = canonicalPreset(JSON.parse(info.preset));
+    const list = await (await fetch('/presets/index.json')).json();
+    for (const p of list.filter((e) => e.name === info.name)) {
+      if (canonicalPreset(await (await fetch(`/presets/${p.file}`)).json()) === wanted) {
+        presetFile = p.file;
+        showTitle();
+        return;
+      }
+    }
+  } catch { /* no list: the name alone */ }
+}
+
 /// Loads a .glb from the server (the file `phedra view` was given, or a preset's export).
 function loadUrl(url, what) {
   $('status').textContent = `loading ${what}…`;
@@ -319,7 +386,7 @@ function loadUrl(url, what) {
 /// Loads a .glb the user picked or dropped.
 async function loadFile(file) {
   if (/\.json$/i.test(file.name)) {
-    openInDesigner(await file.text());  // a preset: the designer edits it (and says what is wrong with it)
+    openInDesigner(await file.text(), file.name);  // a preset: the designer edits it (and says what is wrong with it)
     return;
   }
   if (!/\.(glb|gltf)$/i.test(file.name)) {
@@ -328,6 +395,8 @@ async function loadFile(file) {
   }
   $('status').textContent = `loading ${file.name}…`;
   $('presets').value = '';
+  fileName = baseName(file.name);
+  presetFile = null;
   new GLTFLoader().parse(await file.arrayBuffer(), '', showModel, failed);
 }
 loadUrl('/model.glb', 'the model');
@@ -344,7 +413,10 @@ fetch('/presets/index.json').then((r) => (r.ok ? r.json() : [])).then((list) => 
   $('presets').disabled = list.length === 0;
 }).catch(() => { $('presets').disabled = true; });
 $('presets').addEventListener('change', (e) => {
-  if (e.target.value) loadUrl(`/presets/${e.target.value}.glb`, `the preset ${e.target.value} (exporting it)`);
+  if (!e.target.value) return;
+  fileName = null;
+  presetFile = `${e.target.value}.json`;
+  loadUrl(`/presets/${e.target.value}.glb`, `the preset ${e.target.value} (exporting it)`);
 });
 $('open').addEventListener('change', (e) => { if (e.target.files[0]) loadFile(e.target.files[0]); });
 window.addEventListener('dragover', (e) => e.preventDefault());
@@ -376,6 +448,14 @@ $('type-t').addEventListener('change', () => {
   jumpTo(t);
 });
 $('fit').addEventListener('click', fit);
+// Turning the view changes which panels are seen from behind: their hinges dim (ten times a second at most, and once it stops).
+let facingTimer = null;
+controls.addEventListener('change', () => {
+  clearTimeout(facingTimer);
+  const refresh = () => { if (folds && !playing) { foldsShownAt = performance.now(); foldCounts = folds.update(); } };
+  if (performance.now() - foldsShownAt > 100) refresh();
+  facingTimer = setTimeout(refresh, 120);
+});
 // A click (not a drag of the view) on the surface picks the nearest hinge.
 let pressed = null;
 renderer.domElement.addEventListener('pointerdown', (e) => { pressed = [e.clientX, e.clientY]; });
@@ -392,7 +472,7 @@ renderer.domElement.addEventListener('pointerup', (e) => {
 $('png').addEventListener('click', savePicture);
 $('save-preset').addEventListener('click', savePreset);
 $('export-fold').addEventListener('click', exportFold);
-$('edit').addEventListener('click', () => openInDesigner(info.preset));
+$('edit').addEventListener('click', () => openInDesigner(info.preset, fileName ?? presetFile));
 window.addEventListener('keydown', (e) => {
   if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
   if (e.key === 'f') fit();
@@ -455,6 +535,10 @@ window.phedraViewer = {
   },
   t() { return $('t').textContent; },
   state() { return { position, duration, playing, direction, keyframes: times.length, ...outlines, ...foldCounts, picked }; },
+  /// The fold-angle plot's value axis and the angles it shows: {lo, hi, step, ticks, min, max}, or null.
+  plotAxis: () => plotAxis,
+  /// Hinges drawn dimmed (both their panels seen from behind).
+  dimmedHinges: () => (folds ? folds.back.reduce((n, b, k) => n + (b && folds.signs[k] ? 1 : 0), 0) : 0),
   /// Where on the page the middle of hinge k is shown (pixels), for a click on it.
   hingeScreen(k) {
     const [p, q] = folds.ends(k), m = p.add(q).multiplyScalar(0.5).project(camera);

@@ -6,6 +6,10 @@
 // the slider moves the pose and t, Play continues from where the slider is,
 // back and forth at the ends, stepping to keyframes, jumping to t* and the
 // limits, a typed t (and a refused one), a PNG saved, and the status line.
+// Issue 28: the page opens paused at t* with a Play button; marks under the
+// slider at t_lambda, t* and t_mu; the fold-angle plot scaled to the data; one
+// number format (the flexion interval shown once); the title from the preset's
+// name and its file.
 // usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID [REPRESENTATION]
 import { readFileSync } from 'node:fs';
 import { canvasColours, launch, serve } from './browser.mjs';
@@ -18,13 +22,20 @@ const check = (ok, message) => { if (!ok) failures.push(message); };
 const browser = await launch();
 let passed = 0;
 try {
-  const page = await browser.newPage({ viewport: { width: 1000, height: 700 }, acceptDownloads: true });
+  const page = await browser.newPage({ viewport: { width: 1366, height: 768 }, acceptDownloads: true });
   const errors = [];
   page.on('console', (m) => { if (m.type() === 'error') errors.push(m.text()); });
   page.on('pageerror', (e) => errors.push(String(e)));
   await page.goto(address);
   await page.waitForFunction(() => window.phedraViewer?.ready === true, null, { timeout: 30000 });
   const viewer = (f, ...args) => page.evaluate(f, ...args);
+  // It opens paused at t*, and the button says what it will do: Play.
+  {
+    await page.waitForTimeout(300);
+    const opened = await viewer(() => ({ ...window.phedraViewer.state(), t: window.phedraViewer.t(), play: document.getElementById('play').textContent,
+                                         star: document.getElementById('tstar').textContent }));
+    check(!opened.playing && opened.play === 'Play' && opened.t === opened.star, `opened ${opened.playing ? 'playing' : 'paused'} at t = ${opened.t} (t* ${opened.star}), the button says ${opened.play}`);
+  }
   await viewer(() => window.phedraViewer.pause());
   await page.waitForTimeout(300);
   const info = await viewer(() => ({ ...window.phedraViewer.state() }));
@@ -49,6 +60,32 @@ try {
     check(Math.max(b.maxX - b.minX, b.maxY - b.minY) > 0.25, `at ${seconds} s the model is a speck: ${JSON.stringify(b)}`);
   }
 
+  // Marks under the slider at t_lambda, t* and t_mu, under the thumb at those times.
+  {
+    const marks = await page.$$eval('#marks .mark', (list) => list.map((m) => {
+      const r = m.getBoundingClientRect(), s = document.getElementById('slider').getBoundingClientRect();
+      const f = Number(m.dataset.seconds) / window.phedraViewer.state().duration;
+      return { label: m.textContent, x: r.left + r.width / 2, thumb: s.left + 8 + f * (s.width - 16), title: m.title };
+    }));
+    check(marks.map((m) => m.label).join(' ') === 't\u03bb t* t\u03bc', `slider marks ${marks.map((m) => m.label)}`);
+    for (const m of marks) check(Math.abs(m.x - m.thumb) <= 3, `the ${m.label} mark at x ${m.x.toFixed(0)}, the thumb there at ${m.thumb.toFixed(0)}`);
+  }
+  // One number format: 4 significant digits; the flexion interval shown once.
+  {
+    const text = await page.$eval('#panel', (e) => [...e.querySelectorAll('.row, #kind')].map((x) => x.textContent).join(' '));
+    const long = (text.match(/(?<![\w.])-?\d+\.\d+(?![\w.])/g) ?? []).filter((x) => x.replace(/^-?0\.0*|[-.]/g, '').length > 4);
+    check(long.length === 0, `numbers of more than 4 significant digits: ${long.slice(0, 5).join(', ')}`);
+    const interval = await viewer(() => `[${document.getElementById('lo').textContent}, ${document.getElementById('hi').textContent}]`);
+    check(text.split(interval).length === 2, `the flexion interval ${interval} shown ${text.split(interval).length - 1} times`);
+  }
+  // The title: the preset's name (and the file it came from when that says more).
+  {
+    const [title, file, tab] = await Promise.all([page.$eval('#title', (e) => e.textContent), page.$eval('#file', (e) => e.textContent), page.title()]);
+    const stored = JSON.parse(JSON.parse(readFileSync(glb).subarray(20, 20 + readFileSync(glb).readUInt32LE(12)).toString('utf8')).asset.extras.phedra.preset ?? '{}');
+    check(title === stored.name && tab.startsWith(title), `title "${title}" (tab "${tab}") for the preset "${stored.name}"`);
+    if (stored.name === 'mixed-signs') check(file === 'export of default.json', `the export of default.json is titled "${title}" "${file}"`);
+  }
+
   // Mountain and valley hinges coloured; a click on a hinge plots its fold angle over the motion.
   check(info.mountains + info.valleys > 0, `no hinge coloured mountain or valley: ${JSON.stringify(info)}`);
   {
@@ -70,6 +107,12 @@ try {
     check(points === 121, `the fold-angle plot has ${points} points`);
     const angle = await page.$eval('#hinge-angle', (e) => e.textContent);
     check(/^hinge \d+ \(vertices \d+-\d+\): -?[\d.e-]+ degrees \((valley|mountain|flat)\)$/.test(angle), `picked hinge line: "${angle}"`);
+    // The plot's axis is scaled to the angles the hinge takes: within 3 times their range (at least a degree).
+    const axis = await viewer(() => window.phedraViewer.plotAxis());
+    const range = Math.max(axis.max - axis.min, 1);
+    check(axis.lo <= axis.min && axis.hi >= axis.max && axis.hi - axis.lo <= 3 * range,
+      `the fold-angle axis [${axis.lo}, ${axis.hi}] for angles in [${axis.min}, ${axis.max}]`);
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-hinge-plot.png') });
   }
 
   // The slider moves the model and t.

@@ -1,0 +1,57 @@
+// What the pages write: one number format a page (the designer 4 decimals, the
+// viewer 4 significant digits), the core's texts rewritten in it, the status
+// line without the interval the page shows already, and the page title from the
+// preset's name and the file it came from. Pure: node imports it
+// (tests/js/designer_state_test.mjs).
+
+/// The designer's numbers: 4 decimals (t, heights and the limits line up), or 3
+/// significant digits in exponent form when tiny.
+export const decimals4 = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
+  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : x.toFixed(4));
+
+/// The viewer's numbers: 4 significant digits (no 16-digit noise on screen).
+export const significant4 = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
+  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : Number(x.toPrecision(4)).toString());
+
+// A decimal number in running text: not part of a name ("S_3", "trajectory[2][2]" are
+// integers and stay), with an optional exponent; not a percentage (those keep
+// their one decimal, as the pages write shares).
+const decimal = /(?<![\w.])-?\d+\.\d+(?:e[-+]?\d+)?(?![\w.]|\s*%)/g;
+
+/// `text` with every decimal number written by `format` (a number -> text).
+export function withNumbers(text, format) {
+  return String(text).replace(decimal, (s) => format(Number(s)));
+}
+
+/// The core's buildability summary for a page that shows the flexion interval
+/// already (its limits under the slider, or on their own line): numbers in the
+/// page's format, the interval itself left out.
+export function statusSummary(summary, format) {
+  const text = String(summary)
+    .replace(/^(buildable over the whole flexion interval) \[[^\]]*\]/, '$1')
+    .replace(/( % of the flexion interval) \[[^\]]*\]/, '$1');
+  return withNumbers(text, format);
+}
+
+/// The file name of a path or URL ("presets/default.json" -> "default.json").
+export const baseName = (path) => String(path ?? '').split(/[\\/]/).pop();
+
+/// The title of a page: the preset's name, and the file when it says more
+/// ("mixed-signs" from default.json: both; grid-3x3 from grid-3x3.json: the
+/// name only). Returns {name, file (the text after the name, '' for none), document (the tab's title)}.
+export function pageTitle({ name, file, edited = false, page = 'phedra' }) {
+  const shownName = name || baseName(file).replace(/\.(json|glb|gltf)$/i, '') || 'unnamed';
+  const stem = baseName(file).replace(/\.(json|glb|gltf)$/i, '');
+  const parts = [];
+  if (file && stem !== shownName) parts.push(baseName(file));
+  if (edited) parts.push('edited');
+  const fileText = parts.join(', ');
+  return { name: shownName, file: fileText, document: `${shownName}${fileText ? ` (${fileText})` : ''} · ${page}` };
+}
+
+/// A preset as data, comparable whatever the key order and the "$schema" line.
+export function canonicalPreset(p) {
+  const sort = (v) => (Array.isArray(v) ? v.map(sort) : v && typeof v === 'object'
+    ? Object.fromEntries(Object.keys(v).filter((k) => k !== '$schema').sort().map((k) => [k, sort(v[k])])) : v);
+  return JSON.stringify(sort(p));
+}
