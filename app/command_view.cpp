@@ -54,15 +54,21 @@ void serve_presets(StaticServer& server, const std::filesystem::path& dir) {
                      {"description", document.is_object() ? document.value("description", "") : ""}});
     server.add_file("/presets/" + path.filename().string(), path);
     server.add_generated("/presets/" + stem + ".glb", [path] {
-      const nlohmann::json document = parse_json_text(read_text_file(path));
-      const Design design = design_from_json(document);
+      const nlohmann::json shipped = parse_json_text(read_text_file(path));
+      const Design design = design_from_json(shipped);
       GltfOptions options;
       options.buildability = assess_for_output(design).file_json();
-      options.preset_text = preset_object(document).dump();
+      options.preset_text = preset_object(shipped).dump();
       return gltf_bytes(design, options);
     }, "model/gltf-binary");
   }
   server.add_generated("/presets/index.json", [text = index.dump()] { return text; }, "application/json");
+}
+
+/// /served.json: {"file": the served file's name}, for the page's title.
+void serve_name(StaticServer& server, const std::string& file) {
+  const std::string text = nlohmann::json{{"file", std::filesystem::path(file).filename().string()}}.dump();
+  server.add_generated("/served.json", [text] { return text; }, "application/json");
 }
 
 }  // namespace
@@ -99,6 +105,7 @@ void add_view_command(CLI::App& app, Context& context) {
       }
       StaticServer server(o->web, o->port);
       server.add_file("/preset.json", o->file);
+      serve_name(server, o->file);
       serve_presets(server, o->presets);
       context.out << "designer for " << o->file << " at http://127.0.0.1:" << server.port() << "/designer.html"
                   << std::endl;
@@ -113,6 +120,7 @@ void add_view_command(CLI::App& app, Context& context) {
     }
     StaticServer server(o->web, o->port);
     server.add_file("/model.glb", o->file);
+    serve_name(server, o->file);
     serve_presets(server, o->presets);
     context.out << "viewer for " << o->file << " at http://127.0.0.1:" << server.port() << "/" << std::endl;
     server.serve(o->requests);

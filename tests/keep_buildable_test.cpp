@@ -144,3 +144,35 @@ TEST_CASE("keep-buildable drag of a trajectory point: its neighbours follow it (
   CHECK(projected >= 15);
   CHECK(worst <= 16);
 }
+
+TEST_CASE("keep-buildable drag: fields the caller holds too (the one that defines t*) stay, the held one's neighbours move",
+          "[repair][keep]") {
+  json design = load("helix-126.json");  // apex_heights -1.5 1 -0.5 2.2 ...
+  const json original = design;
+  KeepBuildableDrag drag;
+  ProjectionOptions options;
+  options.max_seconds = 1e9;
+  options.fixed = {"/apex_heights/1"};  // held as the page holds the field of t*
+  const double start = design["apex_heights"][3].get<double>();
+  std::size_t projected = 0;
+  for (int k = 1; k <= 50; ++k) {
+    const double wanted = start - 0.05 * k;  // height 3 down past 0.4 (height 4): S_3 between S_2 and S_4
+    CAPTURE(k, wanted);
+    const json previous = design["apex_heights"][3];
+    json moved = design;
+    moved["apex_heights"][3] = wanted;
+    std::optional<Projection> p;
+    try {
+      p = drag.step(moved, "/apex_heights/3", previous, options);
+    } catch (const InvalidInputError&) {
+      continue;
+    }
+    REQUIRE(p);
+    CHECK(p->preset["apex_heights"][3].get<double>() == wanted);
+    CHECK(p->preset["apex_heights"][1] == original["apex_heights"][1]);
+    CHECK(simple_and_free(p->preset));
+    if (p->moved) ++projected;
+    design = p->preset;
+  }
+  CHECK(projected >= 3);
+}

@@ -85,10 +85,12 @@ class Designer {
   /// When no such design is found in time, the held
   /// entry moves towards the pointer only as far as the design stays buildable
   /// at t* (bisection), like a handle against a wall. The motion over the whole
-  /// interval is for the page to check when the hand stops. {ok: true,
-  /// projected, clamped, evaluations, how} or {ok: false, field, message} (a refused
-  /// value: the previous design stays).
-  val keep(const std::string& key, int index, double x, double y, double z, double budget_ms) {
+  /// interval is for the page to check when the hand stops. `also_fixed`: further
+  /// fields that stay (a JSON array of JSON pointers, e.g. the field that defines
+  /// t*; "" for none). {ok: true, projected, clamped, evaluations, how} or {ok:
+  /// false, field, message} (a refused value: the previous design stays).
+  val keep(const std::string& key, int index, double x, double y, double z, double budget_ms,
+           const std::string& also_fixed) {
     if (!design_) return failure("", "no design loaded");
     nlohmann::json* entry = entry_at(key, index);
     if (!entry) return failure(key, "no such entry " + std::to_string(index));
@@ -101,6 +103,11 @@ class Designer {
       *entry = wanted;
       ProjectionOptions options;
       options.max_seconds = budget_ms / 1000.0;
+      if (!also_fixed.empty()) {
+        for (const nlohmann::json& f : nlohmann::json::parse(also_fixed)) {
+          if (f.is_string() && f.get<std::string>() != pointer) options.fixed.push_back(f.get<std::string>());
+        }
+      }
       std::optional<Projection> p = drag_.step(document_, pointer, previous, options);
       bool clamped = false;
       std::size_t evaluations = p ? p->evaluations : 0;

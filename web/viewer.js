@@ -345,7 +345,7 @@ function showModel(loaded) {
     (animated ? `, ${times.length} keyframes, ${format(duration)} s` : ', static');
   window.phedraViewer.ready = true;
   window.phedraViewer.loads += 1;
-  if (!fileName && !presetFile) recognisePreset();
+  if (!presetFile) recognisePreset();
 }
 
 function failed(error) {
@@ -357,12 +357,13 @@ function showTitle() {
   const title = pageTitle({ name: info.name, file: fileName, page: 'phedra viewer' });
   const stem = (presetFile ?? '').replace(/\.json$/, '');
   $('title').textContent = title.name;
-  $('file').textContent = title.file || (presetFile && stem !== title.name ? `export of ${presetFile}` : '');
+  const source = presetFile && stem !== title.name && presetFile !== fileName ? `export of ${presetFile}` : '';
+  $('file').textContent = [title.file, source].filter(Boolean).join(', ');
   document.title = title.document;
 }
 
-/// The shipped preset the shown file is an export of (the server says not which
-/// file it serves as /model.glb, but a shipped preset is recognised).
+/// The shipped preset the shown file is an export of (recognised by its preset:
+/// a .glb does not say which file its preset came from).
 async function recognisePreset() {
   if (!info.preset) return;
   try {
@@ -399,7 +400,10 @@ async function loadFile(file) {
   presetFile = null;
   new GLTFLoader().parse(await file.arrayBuffer(), '', showModel, failed);
 }
-loadUrl('/model.glb', 'the model');
+// The file `phedra view` serves, named for the title (before the model shows).
+fetch('/served.json').then((r) => (r.ok ? r.json() : {})).then((served) => {
+  if (served.file && !fileName && !presetFile) fileName = baseName(served.file);
+}).catch(() => {}).finally(() => loadUrl('/model.glb', 'the model'));
 
 // The shipped presets (as `phedra view` serves them), each shown through its default export.
 fetch('/presets/index.json').then((r) => (r.ok ? r.json() : [])).then((list) => {

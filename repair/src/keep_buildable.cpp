@@ -18,8 +18,10 @@ using namespace repair_search;
 
 /// The variables' displacement when the held apex height's neighbours at
 /// `offsets` (in its own list of heights) move by `change`, the others stay
-/// (empty when the held field is no apex height or has no such neighbour).
-std::vector<double> neighbour_line(const DesignVariables& variables, const std::vector<int>& offsets, double change) {
+/// (empty when the held field, "apex_heights[3]", is no apex height or has no
+/// such neighbour).
+std::vector<double> neighbour_line(const DesignVariables& variables, const std::string& held_field,
+                                   const std::vector<int>& offsets, double change) {
   const std::vector<DesignVariable>& v = variables.variables();
   // "apex_heights[3]" / "tube.apex_heights[3]" -> ("apex_heights", 3)
   auto split = [](const std::string& field, std::string& list, long& index) {
@@ -31,11 +33,7 @@ std::vector<double> neighbour_line(const DesignVariables& variables, const std::
   };
   std::string held_list;
   long held = -1;
-  for (const DesignVariable& d : v) {
-    if (d.fixed && split(d.field, held_list, held)) break;
-    held = -1;
-  }
-  if (held < 0) return {};
+  if (!split(held_field, held_list, held)) return {};
   std::vector<double> out(v.size(), 0.0);
   bool any = false;
   for (std::size_t k = 0; k < v.size(); ++k) {
@@ -117,9 +115,10 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   };
   std::vector<Line> lines;
   if (options.continue_along.size() == variables->size()) lines.push_back({"continued", &*variables, options.continue_along});
-  if (options.held_change != 0.0) {
+  if (options.held_change != 0.0 && !options.fixed.empty()) {
     for (const std::vector<int>& offsets : std::vector<std::vector<int>>{{-1}, {1}, {-1, 1}, {-2, -1, 1, 2}}) {
-      std::vector<double> d = neighbour_line(*variables, offsets, options.held_change);
+      std::vector<double> d = neighbour_line(*variables, pointer_field(json::json_pointer(options.fixed.at(0))), offsets,
+                                             options.held_change);
       if (!d.empty()) lines.push_back({"neighbours", &*variables, std::move(d)});
     }
   }
@@ -234,7 +233,12 @@ std::optional<Projection> KeepBuildableDrag::step(const json& preset, const std:
                                                   ProjectionOptions options) {
   const json& now = preset.at(json::json_pointer(held));
   const double change = now.is_number() && previous.is_number() ? now.get<double>() - previous.get<double>() : 0.0;
-  options.fixed = {held};
+  // The held field first (the lines read it there), then what the caller holds too.
+  std::vector<std::string> fixed{held};
+  for (const std::string& f : options.fixed) {
+    if (f != held) fixed.push_back(f);
+  }
+  options.fixed = std::move(fixed);
   options.held_change = change;
   if (held != held_) {  // a new drag: where its soft selection starts from, and its size
     origin_ = preset;

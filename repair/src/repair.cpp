@@ -27,21 +27,6 @@ BuildabilityReport verify(const json& preset, bool sweep = true) {
   return assess_buildability(design_from_json(preset), nullptr, options);
 }
 
-std::string pointer_field(const json::json_pointer& pointer) {
-  // "/tube/apex_heights/3" -> "tube.apex_heights[3]"
-  std::string out;
-  const std::string text = pointer.to_string();
-  std::size_t start = 1;
-  while (start <= text.size()) {
-    const std::size_t end = std::min(text.find('/', start), text.size());
-    const std::string part = text.substr(start, end - start);
-    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
-    out += index ? "[" + part + "]" : (out.empty() ? part : "." + part);
-    start = end + 1;
-  }
-  return out;
-}
-
 /// Every number that differs between two presets, as fields (directions as turns).
 std::vector<FieldChange> changes_between(const json& before, const json& after, double size,
                                          const json::json_pointer& at = json::json_pointer()) {

@@ -232,6 +232,21 @@ std::vector<double> local_search(const DesignVariables& variables, Problem& prob
   return nearest.best;
 }
 
+std::string pointer_field(const nlohmann::json::json_pointer& pointer) {
+  // "/tube/apex_heights/3" -> "tube.apex_heights[3]"
+  std::string out;
+  const std::string text = pointer.to_string();
+  std::size_t start = 1;
+  while (start <= text.size()) {
+    const std::size_t end = std::min(text.find('/', start), text.size());
+    const std::string part = text.substr(start, end - start);
+    const bool index = !part.empty() && part.find_first_not_of("0123456789") == std::string::npos;
+    out += index ? "[" + part + "]" : (out.empty() ? part : "." + part);
+    start = end + 1;
+  }
+  return out;
+}
+
 bool all_panels_simple(const Design& design) {
   const Assembly& a = design.assembly;
   for (std::size_t m = 0; m < a.member_count(); ++m) {

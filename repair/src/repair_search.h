@@ -6,7 +6,10 @@
 #include "phedra/design.h"
 #include "phedra/repair.h"
 
+#include <nlohmann/json.hpp>
+
 #include <chrono>
+#include <string>
 #include <cstddef>
 #include <utility>
 #include <vector>
@@ -82,6 +85,9 @@ std::vector<double> towards(Problem& problem, const std::vector<double>& feasibl
 /// One local search from the feasible x; returns the nearest feasible design it saw.
 std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
                                  const RepairOptions& options, double seconds_left, std::size_t evaluations);
+
+/// A JSON pointer as the field users read: "/tube/apex_heights/3" -> "tube.apex_heights[3]".
+std::string pointer_field(const nlohmann::json::json_pointer& pointer);
 
 /// Every panel a simple quad (MATH.md section 9).
 bool all_panels_simple(const Design& design);

@@ -12,6 +12,7 @@
 // name and its file.
 // usage: node tests/js/viewer_test.mjs PHEDRA_BINARY FILE.glb SCREENSHOT.png PANELS INVALID [REPRESENTATION]
 import { readFileSync } from 'node:fs';
+import path from 'node:path';
 import { canvasColours, launch, serve } from './browser.mjs';
 
 const [phedra, glb, screenshot, panels, invalid, representation = 'morph targets'] = process.argv.slice(2);
@@ -83,7 +84,8 @@ try {
     const [title, file, tab] = await Promise.all([page.$eval('#title', (e) => e.textContent), page.$eval('#file', (e) => e.textContent), page.title()]);
     const stored = JSON.parse(JSON.parse(readFileSync(glb).subarray(20, 20 + readFileSync(glb).readUInt32LE(12)).toString('utf8')).asset.extras.phedra.preset ?? '{}');
     check(title === stored.name && tab.startsWith(title), `title "${title}" (tab "${tab}") for the preset "${stored.name}"`);
-    if (stored.name === 'mixed-signs') check(file === 'export of default.json', `the export of default.json is titled "${title}" "${file}"`);
+    if (stored.name === 'mixed-signs') check(file.endsWith('export of default.json'), `the export of default.json is titled "${title}" "${file}"`);
+    check(file.startsWith(path.basename(glb)) || title === path.basename(glb).replace(/\.glb$/, ''), `the served file ${path.basename(glb)} is not named: "${title}" "${file}"`);
   }
 
   // Mountain and valley hinges coloured; a click on a hinge plots its fold angle over the motion.

@@ -116,7 +116,11 @@ export function createBuildability({ state, designer, panel, surface, apply }) {
   /// handle stop). Returns the core's answer; when it accepted, state.preset follows.
   function step(edit) {
     const keep = keepBuildable();
-    const result = keep ? designer.keep(edit.key, edit.index, ...edit.value, keepBudget) : designer.set(edit.key, edit.index, ...edit.value);
+    // A keep-buildable step holds t* too (unless its own field is the one dragged).
+    const star = keep ? tStarField(state.preset, state.info) : null;
+    const result = keep
+      ? designer.keep(edit.key, edit.index, ...edit.value, keepBudget, star ? JSON.stringify([star.pointer]) : '')
+      : designer.set(edit.key, edit.index, ...edit.value);
     if (!result.ok) return result;
     if (keep) {
       keepHeld = pointerOf(edit);

@@ -131,13 +131,23 @@ export function createFiles({ renderer, scene, camera, state, designer, panel, a
       const response = await fetch(url);
       if (!response.ok) continue;
       const preset = await response.json();
-      return { preset, file: url === '/preset.json' ? await shippedFileOf(preset) : 'default.json' };
+      return { preset, file: url === '/preset.json' ? (await servedName()) ?? (await shippedFileOf(preset)) : 'default.json' };
     }
     return { preset: {}, file: null };
   }
 
-  /// The file of the shipped presets that holds `preset`, or null: the server
-  /// says not which file it serves as /preset.json, but a shipped one is recognised.
+  /// The name of the file `phedra view` serves (/served.json), or null.
+  async function servedName() {
+    try {
+      const response = await fetch('/served.json');
+      return response.ok ? (await response.json()).file ?? null : null;
+    } catch {
+      return null;
+    }
+  }
+
+  /// The file of the shipped presets that holds `preset`, or null (a server
+  /// that does not say which file it serves: a shipped one is recognised).
   async function shippedFileOf(preset) {
     try {
       const list = await (await fetch('/presets/index.json')).json();

@@ -18,7 +18,9 @@ namespace phedra {
 /// The keep-buildable drag of the designer: how much a step may search.
 struct ProjectionOptions {
   std::vector<VariableGroup> vary{VariableGroup::apex_heights};
-  std::vector<std::string> fixed;  ///< the held handle's field (JSON pointer)
+  /// The held handle's field first (JSON pointer), then any others that stay
+  /// (e.g. the field that defines t*).
+  std::vector<std::string> fixed;
   std::size_t max_evaluations = 200;
   double max_seconds = 0.012;      ///< within a 60 Hz frame with the redraw
   /// A drag continues: how the previous step moved the varied fields
