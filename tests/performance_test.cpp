@@ -5,6 +5,7 @@
 #include "cli.h"
 #include "phedra/bench_cases.h"
 #include "phedra/bench_figures.h"
+#include "phedra/cache_sizes.h"
 #include "phedra/grid_topology.h"
 #include "phedra/phedron.h"
 
@@ -90,7 +91,7 @@ TEST_CASE("phedra bench --quick: every figure finite, the accuracy and closure f
     if (f.id.rfind("accuracy.", 0) == 0 || f.id == "closure_check.worst_gap") CHECK(f.met());
   }
   for (const char* id : {"evaluate.ns_per_vertex_1e3", "evaluate.ns_per_vertex_1e5", "write.bandwidth_1e5",
-                         "evaluate.linearity", "interval.ms_1e3", "closure_check.s", "gltf.nodes_s",
+                         "evaluate.linearity", "evaluate.ratio_to_write_in_cache", "interval.ms_1e3", "closure_check.s", "gltf.nodes_s",
                          "gltf.morph_size_ratio", "accuracy.isometry_1e5", "accuracy.isometry_n_1e3"}) {
     CAPTURE(id);
     CHECK(ids.count(id) == 1);
@@ -144,4 +145,38 @@ TEST_CASE("phedra check --closure-only: closure and shared vertices without the 
   CHECK(cli::run({"check", data + "/cases/tube-antiparallelogram-asymmetric.json", "--closure-only"}, bad_out,
                  bad_err) == 1);
   CHECK(bad_out.str().find("not checked (--closure-only)") != std::string::npos);
+}
+
+TEST_CASE("the benchmark's cache sizes: sysfs text read, data and unified caches only, defaults when unreadable",
+          "[performance]") {
+  using bench::parse_cache_size;
+  CHECK(parse_cache_size("1024K") == 1048576);
+  CHECK(parse_cache_size("32M") == 33554432);
+  CHECK(parse_cache_size("2G") == (std::size_t{2} << 30));
+  CHECK(parse_cache_size("512") == 512);
+  CHECK(parse_cache_size("") == 0);
+  CHECK(parse_cache_size("big") == 0);
+  CHECK(parse_cache_size("12X") == 0);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("phedra-caches-" + std::to_string(::getpid()));
+  auto cache = [&](int index, const char* level, const char* type, const char* size) {
+    const std::filesystem::path d = dir / ("index" + std::to_string(index));
+    std::filesystem::create_directories(d);
+    std::ofstream(d / "level") << level << "\n";
+    std::ofstream(d / "type") << type << "\n";
+    std::ofstream(d / "size") << size << "\n";
+  };
+  cache(0, "1", "Data", "48K");
+  cache(1, "1", "Instruction", "32K");
+  cache(2, "2", "Unified", "2048K");
+  cache(3, "3", "Unified", "36864K");
+  const bench::CacheSizes sizes = bench::read_cache_sizes(dir);
+  CHECK(sizes.measured);
+  CHECK(sizes.l2 == 2048u * 1024u);
+  CHECK(sizes.last_level == 36864u * 1024u);
+  std::filesystem::remove_all(dir);
+  const bench::CacheSizes none = bench::read_cache_sizes(dir);  // gone: the defaults, said so
+  CHECK_FALSE(none.measured);
+  CHECK(none.l2 == 1u << 20);
+  CHECK(none.last_level == 32u << 20);
 }

@@ -12,6 +12,17 @@ NetMotion::NetMotion(const AxialNet& axial, const ParallelNet& parallel, const s
       scales_(parallel.transversal_scales) {
   mirror_.reserve(signs.size());
   for (Sign s : signs) mirror_.push_back(s == Sign::plus ? 1.0 : -1.0);
+  compute_alphas();
+}
+
+void NetMotion::compute_alphas() {
+  const std::size_t lines = ratio_stride_ == 0 ? 1 : rows_;
+  alphas_.assign(lines * columns_, 1.0);
+  for (std::size_t i = 0; i < lines; ++i) {
+    const double* rho = &ratios_[i * ratio_stride_];
+    double* alpha = &alphas_[i * columns_];
+    for (std::size_t j = 0; j + 1 < columns_; ++j) alpha[j + 1] = alpha[j] * rho[j];
+  }
 }
 
 NetMotion::NetMotion(const CanonicalInput& in, const AxialColumn& column, const Points& trajectory,
@@ -33,6 +44,7 @@ NetMotion::NetMotion(const CanonicalInput& in, const AxialColumn& column, const 
                        column.edge_scale[i], general.data(), &scales_[i * n]);
     sink(i, axial.data(), general.data());
   }
+  compute_alphas();
 }
 
 void NetMotion::complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const {

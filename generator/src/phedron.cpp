@@ -1,5 +1,7 @@
 #include "phedra/phedron.h"
 
+#include "row_kernel.h"
+
 #include "phedra/closed_profile.h"
 #include "phedra/errors.h"
 #include "phedra/geometry_checks.h"
@@ -27,30 +29,6 @@ CanonicalInput to_canonical(const ControlPolylines& in, const CanonicalFrame& fr
   c.signs = in.signs;
   c.scale = input_scale(in);
   return c;
-}
-
-/// One row of the motion in the user's frame, columns 0..count-1: the rho
-/// recursion A_j = S_j + rho_{j-1} (A_{j-1} - S_j) from A_0 = first, and the
-/// general net G_j = previous_G_j + q_j (A_j - previous_A_j); `axial` holds the
-/// previous row on entry and this row on exit. Returns A_{count-1}.
-Vec3 advance_row(const Vec3& first, const Vec3* __restrict apex, const double* __restrict rho,
-                 const double* __restrict q, std::size_t count, const Vec3* __restrict previous,
-                 Vec3* __restrict general, Vec3* __restrict axial) {
-  double x = first.x(), y = first.y(), z = first.z();
-  for (std::size_t j = 0; j < count; ++j) {
-    if (j > 0) {
-      const double r = rho[j - 1];
-      const Vec3& c = apex[j];
-      x = c.x() + r * (x - c.x());
-      y = c.y() + r * (y - c.y());
-      z = c.z() + r * (z - c.z());
-    }
-    Vec3& old = axial[j];
-    general[j] = Vec3(previous[j].x() + q[j] * (x - old.x()), previous[j].y() + q[j] * (y - old.y()),
-                      previous[j].z() + q[j] * (z - old.z()));
-    old = Vec3(x, y, z);
-  }
-  return Vec3(x, y, z);
 }
 
 }  // namespace
@@ -228,7 +206,8 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   }
   // The recursions of the motion are affine, so after column 0 (the strip chain,
   // canonical frame) every row runs in the user's frame and goes straight to `out`:
-  // per vertex one step of the rho recursion and one of the general-net recursion.
+  // the rho recursion in closed form (NetMotion::row_alphas, row_offsets: no
+  // vertex waits on the previous one) and one multiply-add of the general net.
   const LinkageStart start = start_at(t);
   const std::size_t n = motion_.columns();
   std::vector<double> s(n + 1);
@@ -264,22 +243,49 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   Vec3* general = out.data() + shift;
   std::copy(axial, axial + stored, general);
   finish_row(0, general);
+  std::vector<double> offsets(n);  // b_{i,j} at t: once when every row shares its ratios
+  const bool uniform = motion_.uniform();
+  if (uniform) motion_.row_offsets(0, s.data(), offsets.data());
+  RowArguments row{nullptr, offsets.data(), nullptr, stored, Vec3::Zero(), frame_.origin(), axis, nullptr, nullptr, axial};
+  Vec3 first = axial[0];  // A_{i,0}, user frame
+  // The strip chain is serial (row i's trajectory vertex from row i - 1's, a few
+  // square roots a row): the next row's is issued before this row's vertices, so
+  // that the processor overlaps its latency with them.
+  Vec3 next;
+  if (motion_.rows() > 1) advance_column(1, t, s.data(), column0, next, flipped);
   for (std::size_t i = 1; i < motion_.rows(); ++i) {
-    Vec3 next;
-    advance_column(i, t, s.data(), column0, next, flipped);
     column0 = next;
+    if (i + 1 < motion_.rows()) advance_column(i + 1, t, s.data(), column0, next, flipped);
     const double* rho = motion_.row_ratios(i);
     const double* q = motion_.row_scales(i);
     const Vec3* previous = general;
     general += width;
-    const Vec3 a0 = frame_.point_to_user(next);
-    const Vec3 a = advance_row(a0, apex, rho, q, stored, previous, general, axial);
-    if (closed_) {
-      const Vec3& c = apex[n - 1];
-      const Vec3 end = c + rho[n - 2] * (a - c);
-      last += q[n - 1] * (end - axial[n - 1]);
+    const Vec3 a0 = frame_.point_to_user(column0);
+    if (uniform) {
+      // Every row shares alpha and b: the rows differ by alpha_j (a0 - previous a0).
+      const double* alpha = motion_.row_alphas(0);
+      const Vec3 delta = a0 - first;
+      advance_uniform_row({alpha, q, stored, delta, previous, general});
+      const Vec3 end = frame_.origin() + alpha[n - 1] * (a0 - frame_.origin()) + offsets[n - 1] * axis;
+      if (closed_) last += (q[n - 1] * alpha[n - 1]) * delta;
+      axial[0] = a0;
       axial[n - 1] = end;
+    } else {
+      motion_.row_offsets(i, s.data(), offsets.data());
+      row.alpha = motion_.row_alphas(i);
+      row.q = q;
+      row.first = a0;
+      row.previous = previous;
+      row.general = general;
+      const Vec3 a = advance_row(row);
+      if (closed_) {
+        const Vec3& c = apex[n - 1];
+        const Vec3 end = c + rho[n - 2] * (a - c);
+        last += q[n - 1] * (end - axial[n - 1]);
+        axial[n - 1] = end;
+      }
     }
+    first = a0;
     finish_row(i, general);
   }
 }

@@ -30,6 +30,20 @@ class NetMotion {
 
   /// rho_{i,0..n-2} and the transversal scales q_{i,0..n-1} of row i.
   const double* row_ratios(std::size_t i) const { return &ratios_[i * ratio_stride_]; }
+  /// alpha_{i,0..n-1}: alpha_{i,0} = 1, alpha_{i,j+1} = alpha_{i,j} rho_{i,j}. The rho
+  /// recursion in closed form: A[i][j] = S-line point + alpha_{i,j} (A[i][0] - origin) +
+  /// b_{i,j}(t) axis (row_offsets), so a row's vertices do not wait on each other.
+  const double* row_alphas(std::size_t i) const { return &alphas_[i * (ratio_stride_ == 0 ? 0 : columns_)]; }
+  /// Whether every row shares its ratios (every sign '+'): row_alphas and the
+  /// offsets are then the same for all rows.
+  bool uniform() const { return ratio_stride_ == 0; }
+  /// b_{i,0..n-1} of row i at the apex heights s[0..n] (along the axis from the
+  /// origin): b_{i,0} = 0, b_{i,j+1} = rho_{i,j} b_{i,j} + (1 - rho_{i,j}) s[j+1].
+  void row_offsets(std::size_t i, const double* s, double* b) const {
+    const double* rho = row_ratios(i);
+    b[0] = 0.0;
+    for (std::size_t j = 0; j + 1 < columns_; ++j) b[j + 1] = rho[j] * b[j] + (1.0 - rho[j]) * s[j + 1];
+  }
   const double* row_scales(std::size_t i) const { return &scales_[i * columns_]; }
 
   /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
@@ -62,6 +76,8 @@ class NetMotion {
   /// ratio depends on the apex heights alone, not on the row), stride 0 then.
   std::vector<double> ratios_;
   std::size_t ratio_stride_ = 0;
+  std::vector<double> alphas_;  ///< products of the ratios, rows (or 1) x n
+  void compute_alphas();
   std::vector<double> scales_;  ///< parallel-net transversal scale factors, rows x n
   std::vector<double> mirror_;  ///< +1 for '+', -1 for '-' (M+/M- on z), n - 1
 };
