@@ -18,9 +18,27 @@ ln -sfn /usr/include/tiny_gltf.h "$out/include/tiny_gltf.h"
 bash scripts/build-nlopt-wasm.sh  # NLopt for repair, from Debian's source package (once)
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
        -Iio/include -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
-sources=(generator/src/*.cpp tubes/src/*.cpp couplings/src/*.cpp io/src/*.cpp analysis/src/*.cpp repair/src/*.cpp
-         exporters/src/fold_export.cpp exporters/src/gltf_*.cpp exporters/src/keyframes.cpp exporters/src/time_map.cpp
-         exporters/src/panel_tree.cpp wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
+# One translation unit a module (its sources #included in order, as CMake's unity
+# build does): the heavy headers are compiled once a module, not once a file.
+modules=(generator tubes couplings io analysis repair)
+exporter_sources=(exporters/src/fold_export.cpp exporters/src/gltf_*.cpp exporters/src/keyframes.cpp
+                  exporters/src/time_map.cpp exporters/src/panel_tree.cpp)
+mkdir -p "$out/unity"
+unity() {  # unity NAME FILE...: $out/unity/NAME.cpp, rewritten only when its list changes
+  local name="$1" text=""
+  shift
+  for f in "$@"; do text+="#include \"$PWD/$f\""$'\n'; done
+  if [[ ! -f "$out/unity/$name.cpp" || "$(cat "$out/unity/$name.cpp")"$'\n' != "$text" ]]; then
+    printf '%s' "$text" > "$out/unity/$name.cpp"
+  fi
+}
+sources=()
+for m in "${modules[@]}"; do
+  unity "$m" "$m"/src/*.cpp
+  sources+=("$out/unity/$m.cpp")
+done
+unity exporters "${exporter_sources[@]}"
+sources+=("$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
 pids=()
 jobs="$(nproc)"
