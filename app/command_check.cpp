@@ -27,7 +27,8 @@ void add_check_command(CLI::App& app, Context& context) {
   auto options = std::make_shared<CheckCommandOptions>();
   CLI::App* sub = app.add_subcommand(
       "check", "Check planarity, isometry, tube closure and shared vertices over the whole flexion interval (dense "
-               "samples, both limits and t*), and buildability: every panel simple (not a bow-tie) and the motion "
+               "samples, both limits and t*), and buildability: every panel simple (not a bow-tie) and within the size "
+               "bounds, the motion "
                "free of collisions, with the cause of every invalid panel and the preset field to change; exit 1 "
                "when a figure exceeds the tolerance or the design is not buildable over the whole interval");
   add_preset_argument(sub, options->preset);
@@ -49,6 +50,7 @@ void add_check_command(CLI::App& app, Context& context) {
                   "Buildability: samples from t* to each flexion limit for the collision sweep")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
+  add_size_bound_options(sub, options->buildability.bounds);
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
     const LoadedDesign loaded = load_with_preset(context, options->preset);

@@ -15,6 +15,7 @@ namespace {
 struct IntersectionsOptions {
   std::string preset;
   SelfIntersectionOptions sweep;
+  SizeBounds bounds;
   bool json = false;
 };
 
@@ -26,7 +27,7 @@ void add_intersections_command(CLI::App& app, Context& context) {
       "intersections",
       "Find where the design intersects itself over its flexion interval: panels that penetrate each other and "
       "hinges that fold shut; print the intersection-free sub-interval around t* and the panels that end it, the "
-      "invalid (bow-tie, degenerate) panels with their causes, and the buildable part of the interval; exit 1 when "
+      "invalid (bow-tie, degenerate, oversized, sliver) panels with their causes, and the buildable part of the interval; exit 1 when "
       "the configuration at t* itself intersects");
   add_preset_argument(sub, o->preset);
   sub->add_option("--samples", o->sweep.samples_per_side,
@@ -34,11 +35,13 @@ void add_intersections_command(CLI::App& app, Context& context) {
                   "bisected to 1e-12 of the interval")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
+  add_size_bound_options(sub, o->bounds);
   sub->add_flag("--json", o->json, "Print JSON instead of text");
   sub->callback([o, &context] {
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     BuildabilityOptions options;
     options.sweep = o->sweep;
+    options.bounds = o->bounds;
     const BuildabilityReport report = assess_buildability(loaded.design, &loaded.preset, options);
     if (o->json) {
       nlohmann::json j = report.motion.to_json();

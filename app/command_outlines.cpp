@@ -108,7 +108,8 @@ void add_outlines_command(CLI::App& app, Context& context) {
     }
     if (!buildability.panels_simple()) {
       context.err << "phedra: warning: " << buildability.invalid.size() << " of " << buildability.panels
-                  << " panels cannot be cut as one plate (filled red on the sheets): panels "
+                  << " panels cannot be " << (buildability.count(PanelShape::oversized) + buildability.count(PanelShape::sliver) ? "built" : "cut as one plate")
+                  << " (filled red on the sheets): panels "
                   << buildability.invalid_list() << "; `phedra check " << o->preset
                   << "` names the cause of each and the field to change\n";
     }

@@ -22,8 +22,16 @@ struct RepairCommandOptions {
   std::string vary = "apex_heights,directions";
   RepairOptions repair;
   bool no_fallback = false;
+  bool no_escalate = false;
   bool json = false;
 };
+
+/// "apex_heights,directions,trajectory": what a result varied, as --vary takes it.
+std::string group_list(const std::vector<VariableGroup>& groups) {
+  std::string out;
+  for (VariableGroup g : groups) out += (out.empty() ? "" : ",") + to_string(g);
+  return out;
+}
 
 std::string percent(double fraction) { return format_short(100.0 * fraction) + " %"; }
 
@@ -71,6 +79,8 @@ nlohmann::json result_json(const RepairResult& r) {
           {"starts", r.starts},
           {"seconds", r.seconds},
           {"notes", r.notes},
+          {"varied", group_list(r.varied)},
+          {"escalated", r.escalated},
           {"closest", r.closest.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.closest)}};
 }
 
@@ -79,10 +89,11 @@ nlohmann::json result_json(const RepairResult& r) {
 void add_repair_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<RepairCommandOptions>();
   CLI::App* sub = app.add_subcommand(
-      "repair", "The nearest buildable design: change the preset's apex heights and directions (by default) as "
-                "little as possible, relative to the model size, until every panel is simple and the motion is free "
-                "of collisions over the whole flexion interval (or the widest part around t* that can be reached); "
-                "writes the repaired preset and prints what changed; exit 1 when nothing buildable was found");
+      "repair", "The nearest buildable design: change the preset's apex heights and directions (by default; the "
+                "trajectory too when they cannot do it) as little as possible, relative to the model size, until "
+                "every panel is simple and the motion is free of collisions over the whole flexion interval (or the "
+                "widest part around t* that can be reached); writes the repaired preset and prints what changed; "
+                "exit 1 when nothing buildable was found");
   add_preset_argument(sub, o->preset);
   sub->add_option("-o,--output", o->output, "The repaired preset (.json); not written when nothing was found")->required();
   sub->add_option("--vary", o->vary, "What may change: a comma-separated list of apex_heights, directions, trajectory")
@@ -92,8 +103,12 @@ void add_repair_command(CLI::App& app, Context& context) {
                   "limit (1: all of it, 0: t* alone)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  sub->add_flag("--no-escalate", o->no_escalate,
+                "With the default --vary: do not try the trajectory too when the heights and directions cannot do it "
+                "(by default it is tried next, and the result says so)");
   sub->add_flag("--no-fallback", o->no_fallback,
                 "Fail (exit 1) rather than settle for a smaller buildable part than --require asks");
+  add_size_bound_options(sub, o->repair.bounds);
   sub->add_option("--restarts", o->repair.restarts,
                   "Perturbed starts after the input for the search of simple panels (their set need not be connected)")
       ->check(CLI::Range(0, 1000))
@@ -103,7 +118,7 @@ void add_repair_command(CLI::App& app, Context& context) {
   sub->add_option("--closest", o->closest,
                   "When nothing buildable is found: write the closest design to this file (.json), to inspect");
   sub->add_flag("--json", o->json, "Print JSON instead of text");
-  sub->callback([o, &context] {
+  sub->callback([o, sub, &context] {
     if (std::filesystem::path(o->output).extension() != ".json") {
       throw InvalidInputError("--output", "the repaired preset is written as .json: \"" + o->output + "\"");
     }
@@ -111,15 +126,17 @@ void add_repair_command(CLI::App& app, Context& context) {
       throw InvalidInputError("--closest", "the closest design is written as .json: \"" + o->closest + "\"");
     }
     o->repair.vary = parse_variable_groups(o->vary);
+    // An explicit --vary is what the user allows; the default may grow to the trajectory.
+    o->repair.escalate = !o->no_escalate && sub->count("--vary") == 0;
     o->repair.widest_fallback = !o->no_fallback;
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     const RepairResult r = repair(loaded.preset, o->repair);
     const std::string name = loaded.preset.value("name", std::string("unnamed"));
     if (r.found && !r.already_buildable) {
-      emit(preset_text(named_result(r.preset, name, o->vary, r), o->preset), o->output, o->preset, context.out);
+      emit(preset_text(named_result(r.preset, name, group_list(r.varied), r), o->preset), o->output, o->preset, context.out);
     }
     if (!r.found && !o->closest.empty() && r.closest_preset.is_object()) {
-      emit(preset_text(named_result(r.closest_preset, name, o->vary, r), o->preset), o->closest, o->preset, context.out);
+      emit(preset_text(named_result(r.closest_preset, name, group_list(r.varied), r), o->preset), o->closest, o->preset, context.out);
     }
     if (o->json) {
       context.out << result_json(r).dump(2) << '\n';

@@ -1,6 +1,7 @@
 #include "support.h"
 
 #include "phedra/files.h"
+#include "phedra/number_format.h"
 #include "phedra/preset.h"
 #include "phedra/design_preset.h"
 
@@ -10,6 +11,20 @@ namespace phedra::cli {
 
 void add_preset_argument(CLI::App* command, std::string& preset) {
   command->add_option("preset", preset, "Preset file (JSON, docs/presets.md)")->required();
+}
+
+void add_size_bound_options(CLI::App* command, SizeBounds& bounds) {
+  command->add_option("--max-growth", bounds.max_growth,
+                      "Buildability: the design's bounding-box diagonal may grow to this many times its size at t* "
+                      "over the buildable interval, no further (0: no bound)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--max-panel-ratio", bounds.max_edge_ratio,
+                      "Buildability: a panel whose longest edge is more than this many times the median panel's is "
+                      "oversized (0: no bound); a panel thinner than " + format_significant(bounds.min_aspect, 3) +
+                      " of its length is a sliver")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
 }
 
 Design load(Context& context, const std::string& path) {

@@ -3,6 +3,7 @@
 
 #include "commands.h"
 #include "phedra/design.h"
+#include "phedra/panel_size.h"
 
 #include <nlohmann/json.hpp>
 
@@ -13,6 +14,9 @@ namespace phedra::cli {
 
 /// Registers the PRESET positional argument every design command takes.
 void add_preset_argument(CLI::App* command, std::string& preset);
+
+/// --max-growth and --max-panel-ratio: what counts as buildable by size (panel_size.h).
+void add_size_bound_options(CLI::App* command, SizeBounds& bounds);
 
 /// Loads and builds the design of a preset file; records the path in the context
 /// so that errors name it.

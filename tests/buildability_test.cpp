@@ -114,7 +114,9 @@ TEST_CASE("section 9: the axial face and the edge-scale signs predict every pane
     const Assembly& a = d->assembly;
     const AssemblyMesh mesh = panel_mesh(*d);
     const Points x = mesh.positions(a.evaluate(a.t_star()));
-    const std::vector<PanelDiagnosis> invalid = diagnose_panels(*d, mesh);
+    DiagnosisOptions shapes_only;  // the rule is about shapes: no size bounds here (size_bounds_test.cpp)
+    shapes_only.size = {0.0, 0.0, 0.0};
+    const std::vector<PanelDiagnosis> invalid = diagnose_panels(*d, mesh, nullptr, shapes_only);
     std::size_t next_invalid = 0;
     for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
       const PanelNets nets = panel_nets(a, mesh.face_member[f], mesh.face_local[f]);
@@ -280,7 +282,7 @@ TEST_CASE("arrays: distinct panels against a brute-force count of coincident mem
     CHECK(mesh.faces.size() == places.size());
     CHECK(mesh.shared_walls == member_faces - places.size());
     CHECK(invalid_panels(*d).size() == invalid_places);
-    const BuildabilityReport r = assess_buildability(*d, nullptr, {{}, {false, 0}, false});
+    const BuildabilityReport r = assess_buildability(*d, nullptr, {{}, {false, 0, {}}, false});
     CHECK(r.panels == places.size());
     CHECK(r.invalid.size() == invalid_places);
     // Merging removes both copies of every shared wall.

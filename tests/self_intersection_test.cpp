@@ -220,14 +220,14 @@ TEST_CASE("the sweep on every shipped preset: tubes, pairs and arrays", "[self-i
   // The shipped presets are buildable: the 3 x 3 grid (interior walls included) is free over its whole interval.
   const SelfIntersectionReport grid = find_self_intersections(load_design(presets + "/grid-3x3.json"));
   CHECK(grid.intersection_free());
-  // A design whose hinge folds through inside the interval, below t*.
+  // A design whose hinge folds through inside the interval, above t* (t* is t_lambda).
   const Design partly = load_design(data + "/partly-buildable.json");
   const SelfIntersectionReport r = find_self_intersections(partly);
   check_report(partly, r);
-  REQUIRE(r.lower);
-  CHECK(r.lower->kind == Collision::Kind::hinge);
-  CHECK(r.free_lower > r.t_lambda + 0.3 * (r.t_mu - r.t_lambda));
-  CHECK(r.free_upper == r.t_mu);
+  REQUIRE(r.upper);
+  CHECK(r.upper->kind == Collision::Kind::hinge);
+  CHECK(r.free_upper < r.t_mu - 0.3 * (r.t_mu - r.t_lambda));
+  CHECK(r.free_lower == r.t_lambda);
 }
 
 TEST_CASE("a design that cuts through itself at t*", "[self-intersection]") {
@@ -253,7 +253,7 @@ TEST_CASE("phedra intersections: text, JSON and exit codes", "[self-intersection
   REQUIRE(j.code == 0);
   const nlohmann::json report = nlohmann::json::parse(j.out);
   CHECK(report["intersection_free"] == false);
-  CHECK(report["lower"]["kind"] == "hinge");
+  CHECK(report["upper"]["kind"] == "hinge");
   CHECK(report["free_interval"].size() == 2);
   CHECK(report["samples_per_side"] == 50);
   CHECK(report["buildability"]["buildable_interval"] == report["free_interval"]);
@@ -291,7 +291,7 @@ TEST_CASE("generate --no-self-intersection restricts every export to the free in
   CHECK(extras["animated_interval"][0].get<double>() == Approx(r.free_lower));
   CHECK(extras["animated_interval"][1].get<double>() == Approx(r.free_upper));
   // A t outside it is refused, naming the option; nothing is written.
-  const double outside = 0.5 * (r.free_lower + r.t_lambda);
+  const double outside = 0.5 * (r.free_upper + r.t_mu);
   const Run out_of = phedra_cli({"generate", grid, "-o", (dir / "x.json").string(), "--no-self-intersection", "--t",
                                  std::to_string(outside)});
   CHECK(out_of.code == 2);

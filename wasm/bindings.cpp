@@ -315,6 +315,8 @@ class Designer {
       v.set("panels", static_cast<double>(r.panels));
       v.set("bow_tie", static_cast<double>(r.count(PanelShape::bow_tie)));
       v.set("degenerate", static_cast<double>(r.count(PanelShape::degenerate)));
+      v.set("oversized", static_cast<double>(r.count(PanelShape::oversized)));
+      v.set("sliver", static_cast<double>(r.count(PanelShape::sliver)));
       v.set("shape_margin", r.shape_margin);
       v.set("self_crossing", !r.self_crossing_members.empty());
       v.set("swept", r.swept);
@@ -348,11 +350,11 @@ class Designer {
     }
   }
 
-  /// The panels that are not simple (bow-ties, degenerate): cheap enough for
+  /// The panels that cannot be built (bow-ties, degenerate, oversized, slivers): cheap enough for
   /// every drag step (one evaluation at t*). A view into the module's memory.
   val invalidPanels() {
     if (!design_) return failure("", "no design loaded");
-    const std::vector<PanelShape> shapes = panel_shapes(design_->assembly, mesh_);
+    const std::vector<PanelShape> shapes = bounded_panel_shapes(design_->assembly, mesh_);
     invalid_.clear();
     for (std::size_t f = 0; f < shapes.size(); ++f) {
       if (!is_valid_panel(shapes[f])) invalid_.push_back(static_cast<std::uint32_t>(f));

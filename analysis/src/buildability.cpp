@@ -68,10 +68,15 @@ std::string BuildabilityReport::summary() const {
   }
   if (!panels_simple()) {
     const std::size_t bow = count(PanelShape::bow_tie), flat = count(PanelShape::degenerate);
-    s = "not buildable: " + std::to_string(invalid.size()) + " of " + std::to_string(panels) + " panels cannot be cut as one plate (";
-    if (bow) s += plural(bow, "bow-tie");
-    if (bow && flat) s += ", ";
-    if (flat) s += std::to_string(flat) + " degenerate";
+    const std::size_t big = count(PanelShape::oversized), thin = count(PanelShape::sliver);
+    std::vector<std::string> kinds;
+    if (bow) kinds.push_back(plural(bow, "bow-tie"));
+    if (flat) kinds.push_back(std::to_string(flat) + " degenerate");
+    if (big) kinds.push_back(std::to_string(big) + " oversized");
+    if (thin) kinds.push_back(plural(thin, "sliver"));
+    s = "not buildable: " + std::to_string(invalid.size()) + " of " + std::to_string(panels) + " panels " +
+        (big + thin ? "cannot be built (" : "cannot be cut as one plate (");
+    for (std::size_t k = 0; k < kinds.size(); ++k) s += (k ? ", " : "") + kinds[k];
     s += ": panel" + std::string(invalid.size() == 1 ? " " : "s ") + invalid_list() + ")";
     if (motion.at_t_star) s += "; at t* " + describe(*motion.at_t_star, several);
     return s;
@@ -110,6 +115,8 @@ nlohmann::json BuildabilityReport::to_json() const {
           {"shape_margin", shape_margin},
           {"bow_tie", count(PanelShape::bow_tie)},
           {"degenerate", count(PanelShape::degenerate)},
+          {"oversized", count(PanelShape::oversized)},
+          {"sliver", count(PanelShape::sliver)},
           {"invalid_panels", list},
           {"self_crossing_members", crossing},
           {"swept", swept},
@@ -130,6 +137,8 @@ nlohmann::json BuildabilityReport::file_json() const {
                    {"panels", panels},
                    {"bow_tie", count(PanelShape::bow_tie)},
                    {"degenerate", count(PanelShape::degenerate)},
+                   {"oversized", count(PanelShape::oversized)},
+                   {"sliver", count(PanelShape::sliver)},
                    {"invalid_panels", panels_list},
                    {"invalid_shapes", shapes},
                    {"self_crossing_by_kind", !self_crossing_members.empty()},
@@ -144,7 +153,10 @@ std::ostream& operator<<(std::ostream& out, const BuildabilityReport& r) {
   out << "buildability: " << r.summary() << '\n';
   out << "  panels: " << r.panels << " distinct";
   if (r.shared_walls) out << " (" << plural(r.shared_walls, "wall") << " shared by two cells, counted once)";
-  out << ", " << r.count(PanelShape::bow_tie) << " bow-tie, " << r.count(PanelShape::degenerate) << " degenerate\n";
+  out << ", " << r.count(PanelShape::bow_tie) << " bow-tie, " << r.count(PanelShape::degenerate) << " degenerate";
+  if (r.count(PanelShape::oversized)) out << ", " << r.count(PanelShape::oversized) << " oversized";
+  if (r.count(PanelShape::sliver)) out << ", " << plural(r.count(PanelShape::sliver), "sliver");
+  out << '\n';
   const std::size_t detail = 8;
   for (std::size_t k = 0; k < std::min(detail, r.invalid.size()); ++k) {
     const PanelDiagnosis& d = r.invalid[k];
@@ -181,7 +193,9 @@ BuildabilityReport assess_buildability(const Design& design, const nlohmann::jso
   r.t_star = a.t_star();
   r.t_lambda = a.flexion_interval().lower.t;
   r.t_mu = a.flexion_interval().upper.t;
-  r.invalid = diagnose_panels(design, mesh, preset, options.diagnosis);
+  DiagnosisOptions diagnosis = options.diagnosis;
+  diagnosis.size = options.bounds;
+  r.invalid = diagnose_panels(design, mesh, preset, diagnosis);
   r.shape_margin = std::numeric_limits<double>::infinity();
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     r.shape_margin = std::min(r.shape_margin, shape_margin(panel_nets(a, mesh.face_member[f], mesh.face_local[f])));
@@ -191,6 +205,7 @@ BuildabilityReport assess_buildability(const Design& design, const nlohmann::jso
   }
   r.swept = options.sweep_motion;
   SelfIntersectionOptions sweep = options.sweep;
+  sweep.max_growth = options.bounds.max_growth;
   if (sweep.samples_per_side == 0) sweep.samples_per_side = sweep_samples_for(r.panels);
   if (options.sweep_motion) {
     r.motion = find_self_intersections(design, sweep);

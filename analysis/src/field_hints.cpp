@@ -2,6 +2,7 @@
 
 #include "phedra/errors.h"
 #include "phedra/panel_nets.h"
+#include "phedra/panel_size.h"
 #include "phedra/design_preset.h"
 
 #include <algorithm>
@@ -43,10 +44,21 @@ void add_points(std::vector<DesignField>& out, const json& points, const Pointer
   }
 }
 
-/// The corner turns of a member face's general net (canonical), along `normal`,
-/// over model_size^2: what a field moves.
-std::array<double, 4> turns(const Assembly& a, const MemberFace& f, const Vec3& normal, double size2) {
-  std::array<double, 4> t = corner_turns(panel_nets(a, f.member, f.local).general, normal);
+/// What a field moves, zero where the goal is reached: the corner turns of a
+/// member face's general net (canonical) along `normal` over model_size^2; an
+/// edge's target length over its length, less 1; the aspect over its bound,
+/// less 1 (unused entries NaN: no slope).
+std::array<double, 4> measure(const Assembly& a, const MemberFace& f, const HintGoal& goal, const Vec3& normal, double size2) {
+  const PanelCorners g = panel_nets(a, f.member, f.local).general;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (goal.kind == HintGoal::Kind::edge) {
+    // The target over the length: nearly linear where two nearly parallel lines meet far out.
+    return {goal.value / (g[(goal.edge + 1) % 4] - g[goal.edge]).norm() - 1.0, nan, nan, nan};
+  }
+  if (goal.kind == HintGoal::Kind::aspect) {
+    return {quad_area(g) / longest_edge_squared(g) / goal.value - 1.0, nan, nan, nan};
+  }
+  std::array<double, 4> t = corner_turns(g, normal);
   for (double& v : t) v /= size2;
   return t;
 }
@@ -108,16 +120,18 @@ std::vector<DesignField> design_fields(const json& preset, double model_size) {
 }
 
 std::vector<std::vector<FieldHint>> field_hints(const json& preset, const Design& design,
-                                                const std::vector<MemberFace>& faces) {
+                                                const std::vector<MemberFace>& faces, const std::vector<HintGoal>& given) {
+  std::vector<HintGoal> goals = given;
+  goals.resize(faces.size());
   const Assembly& a = design.assembly;
-  const double size = a.model_size(), size2 = size * size;
+  const double size = bounded_model_size(design), size2 = size * size;
   std::vector<Vec3> normals;
   std::vector<std::array<double, 4>> at_star;
   std::vector<std::size_t> strips;
   for (const MemberFace& f : faces) {
     const PanelNets nets = panel_nets(a, f.member, f.local);
     normals.push_back(quad_normal(nets.general));
-    at_star.push_back(turns(a, f, normals.back(), size2));
+    at_star.push_back(measure(a, f, goals[at_star.size()], normals.back(), size2));
     strips.push_back(nets.row);
   }
   struct Best {
@@ -149,7 +163,7 @@ std::vector<std::vector<FieldHint>> field_hints(const json& preset, const Design
             built = false;
             break;
           }
-          sides[side].push_back(turns(d.assembly, faces[k], normals[k], size2));
+          sides[side].push_back(measure(d.assembly, faces[k], goals[k], normals[k], size2));
         }
       } catch (const Error&) {
         built = false;  // the change breaks an assumption (or a smooth curve's chord count changes)

@@ -126,6 +126,8 @@ std::string to_string(PanelCause cause) {
     case PanelCause::edge_reversed: return "edge scale reversed";
     case PanelCause::boundary_segment_short: return "boundary edge scale in (0, 1)";
     case PanelCause::degenerate: return "degenerate";
+    case PanelCause::oversized: return "oversized";
+    case PanelCause::sliver: return "sliver";
   }
   return "?";
 }
@@ -231,8 +233,13 @@ double shape_margin(const PanelNets& p) {
 std::vector<PanelDiagnosis> diagnose_panels(const Design& design, const AssemblyMesh& mesh, const nlohmann::json* preset,
                                             const DiagnosisOptions& options) {
   const Assembly& a = design.assembly;
-  const std::vector<PanelShape> shapes = panel_shapes(a, mesh);
+  const SizeBounds& bounds = options.size;
+  const std::vector<PanelShape> shapes = bounded_panel_shapes(a, mesh, bounds);
+  AssemblyConfiguration at_star;
+  a.evaluate(a.t_star(), at_star);
+  const std::vector<PanelProportions> proportions = panel_proportions(mesh.positions(at_star), mesh.faces);
   std::vector<PanelDiagnosis> out;
+  std::vector<HintGoal> goals;
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     const PanelShape shape = shapes[f];
     if (is_valid_panel(shape)) continue;
@@ -248,6 +255,10 @@ std::vector<PanelDiagnosis> diagnose_panels(const Design& design, const Assembly
     const PanelNets nets = panel_nets(a, m, local);
     d.rule = apply_shape_rule(nets);
     if (shape == PanelShape::degenerate) d.rule.cause = PanelCause::degenerate;
+    if (shape == PanelShape::oversized) d.rule.cause = PanelCause::oversized;
+    if (shape == PanelShape::sliver) d.rule.cause = PanelCause::sliver;
+    const PanelProportions& size = proportions[f];
+    HintGoal goal;
     switch (d.rule.cause) {
       case PanelCause::axial_face_crossed: d.why = why_axial_crossed(nets, a, m); break;
       case PanelCause::boundary_segment_short: d.why = why_boundary(nets, d.rule, m); break;
@@ -259,18 +270,31 @@ std::vector<PanelDiagnosis> diagnose_panels(const Design& design, const Assembly
         d.why = "it has no area: its corners are collinear" +
                 std::string(d.rule.axial == PanelShape::degenerate ? " (already in the axial net)" : "");
         break;
+      case PanelCause::oversized:
+        d.why = "its " + edge_name(nets, a, m, size.longest) + " is " + format_short(size.longest_edge) + " long, " +
+                format_short(size.edge_ratio) + " times the median panel's longest edge (at most " +
+                format_short(bounds.max_edge_ratio) + "): lines that meet there are nearly parallel";
+        goal = {HintGoal::Kind::edge, size.longest, size.longest_edge / size.edge_ratio * bounds.max_edge_ratio};
+        break;
+      case PanelCause::sliver:
+        d.why = "it is a sliver: its area is " + format_short(size.aspect) + " of its longest edge squared (at least " +
+                format_short(bounds.min_aspect) + "): a strip too thin to cut";
+        goal = {HintGoal::Kind::aspect, size.longest, bounds.min_aspect};
+        break;
       case PanelCause::none:
         // The rule and the geometry disagree only within rounding of a straight corner.
         d.why = "a corner is (numerically) straight: the panel is on the edge of crossing";
         break;
     }
     out.push_back(std::move(d));
+    goals.push_back(goal);
   }
   if (preset && options.hints && !out.empty()) {
     std::vector<MemberFace> faces;
     const std::size_t count = std::min(out.size(), options.max_hinted_panels);
     for (std::size_t k = 0; k < count; ++k) faces.push_back({mesh.face_member[out[k].panel], mesh.face_local[out[k].panel]});
-    const std::vector<std::vector<FieldHint>> hints = field_hints(*preset, design, faces);
+    goals.resize(count);
+    const std::vector<std::vector<FieldHint>> hints = field_hints(*preset, design, faces, goals);
     for (std::size_t k = 0; k < count; ++k) out[k].hints = hints[k];
   }
   return out;

@@ -11,6 +11,8 @@ std::string to_string(PanelShape shape) {
     case PanelShape::non_convex: return "non-convex";
     case PanelShape::bow_tie: return "bow-tie";
     case PanelShape::degenerate: return "degenerate";
+    case PanelShape::oversized: return "oversized";
+    case PanelShape::sliver: return "sliver";
   }
   return "?";
 }

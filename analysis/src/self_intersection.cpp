@@ -1,5 +1,7 @@
 #include "phedra/self_intersection.h"
 
+#include "phedra/panel_size.h"
+
 #include "phedra/box_tree.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
@@ -25,8 +27,20 @@ constexpr double two_pi = 2.0 * std::numbers::pi;
 struct Hinge {
   std::size_t a = 0, b = 0;        ///< faces (indices into the valid faces)
   std::size_t v0 = 0, v1 = 0;      ///< the edge
-  std::array<std::size_t, 2> far_a{}, far_b{};  ///< the other corners of each face
+  Quad quad_a{}, quad_b{};         ///< the corners of each face
+  int corner_a = 0, corner_b = 0;  ///< the edge is corner c to c + 1 of each face
 };
+
+/// The direction from a hinge into a face, in the face's plane: its vector area
+/// (oriented by its corner order, right for darts too) crossed with the edge as
+/// the face runs along it. A point of the face (the far corners' midpoint) is
+/// not: a dart whose reflex corner is on the hinge can have it across the hinge
+/// line, and the hinge would read shut while it is flat.
+Vec3 into_face(const Points& x, const Quad& q, int corner) {
+  Vec3 area = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) area += x[q[k]].cross(x[q[(k + 1) % 4]]);
+  return area.cross(x[q[(corner + 1) % 4]] - x[q[corner]]);
+}
 
 /// The faces, hinges and broad phase of one design's merged mesh.
 class CollisionDetector {
@@ -50,6 +64,7 @@ class CollisionDetector {
       const Quad& q = mesh_.faces[valid_[k]];
       for (int c = 0; c < 4; ++c) {
         const std::size_t u = q[c], v = q[(c + 1) % 4];
+        if (u == v) continue;  // a boundary triangle's repeated corner: no edge
         edges[{std::min(u, v), std::max(u, v)}].push_back({k, c});
       }
     }
@@ -59,8 +74,7 @@ class CollisionDetector {
           const Quad& qa = mesh_.faces[valid_[faces[i].first]];
           const Quad& qb = mesh_.faces[valid_[faces[j].first]];
           const int ca = faces[i].second, cb = faces[j].second;
-          hinges_.push_back({faces[i].first, faces[j].first, edge.first, edge.second,
-                             {qa[(ca + 2) % 4], qa[(ca + 3) % 4]}, {qb[(cb + 2) % 4], qb[(cb + 3) % 4]}});
+          hinges_.push_back({faces[i].first, faces[j].first, edge.first, edge.second, qa, qb, ca, cb});
           neighbours_[faces[i].first].push_back(faces[j].first);
           neighbours_[faces[j].first].push_back(faces[i].first);
         }
@@ -85,8 +99,8 @@ class CollisionDetector {
     out.reserve(hinges_.size());
     for (const Hinge& h : hinges_) {
       const Vec3 e = (x[h.v1] - x[h.v0]).normalized();
-      Vec3 a = 0.5 * (x[h.far_a[0]] + x[h.far_a[1]]) - x[h.v0];
-      Vec3 b = 0.5 * (x[h.far_b[0]] + x[h.far_b[1]]) - x[h.v0];
+      Vec3 a = into_face(x, h.quad_a, h.corner_a);
+      Vec3 b = into_face(x, h.quad_b, h.corner_b);
       a -= e.dot(a) * e;
       b -= e.dot(b) * e;
       double angle = std::atan2(e.dot(a.cross(b)), a.dot(b));
@@ -167,14 +181,17 @@ class CollisionDetector {
     return std::nullopt;
   }
 
-  /// The deepest penetration of any two panels at x (0 when none).
-  double deepest(const Points& x) const {
-    double d = 0.0;
+  /// The deepest penetration of any two panels at x (0 when none), and the sum
+  /// of the penetrations of every penetrating pair.
+  std::pair<double, double> deepest(const Points& x) const {
+    double d = 0.0, sum = 0.0;
     for_each_penetration(x, [&](std::size_t f, std::size_t g) {
-      d = std::max(d, depth(f, g));
+      const double here = depth(f, g);
+      d = std::max(d, here);
+      sum += here;
       return true;
     });
-    return d;
+    return {d, sum};
   }
 
   /// Every panel (mesh face) that penetrates another at x.
@@ -317,6 +334,35 @@ class CollisionDetector {
 
   PanelId id(std::size_t f) const { return panel_id(assembly_, mesh_, f); }
 
+ public:
+  /// The size bound: when x's bounding-box diagonal passes `limit`, a growth
+  /// "collision" naming a panel of the vertex furthest from the box's centre.
+  std::optional<Collision> grown(const Points& x, double t, double limit, double bound) const {
+    if (!(bounding_diagonal(x) > limit)) return std::nullopt;
+    Vec3 lo = x[0], hi = x[0];
+    for (const Vec3& p : x) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    const Vec3 centre = 0.5 * (lo + hi);
+    std::size_t far = 0;
+    for (std::size_t v = 1; v < x.size(); ++v) {
+      if ((x[v] - centre).squaredNorm() > (x[far] - centre).squaredNorm()) far = v;
+    }
+    std::size_t face = 0;
+    for (std::size_t f = 0; f < mesh_.faces.size(); ++f) {
+      const Quad& q = mesh_.faces[f];
+      if (std::find(q.begin(), q.end(), far) != q.end()) {
+        face = f;
+        break;
+      }
+    }
+    Collision c{Collision::Kind::growth, id(face), id(face), t, bound};
+    return c;
+  }
+
+ private:
+
   static constexpr double angle_tolerance = 1e-9;
   const Assembly& assembly_;
   AssemblyMesh mesh_;
@@ -333,7 +379,7 @@ class CollisionDetector {
 /// A collision that starts at `end` itself (within 1e-9 of the interval) is a
 /// contact at the limit: returned in `contact`, and the free interval reaches `end`.
 std::optional<Collision> sweep(const CollisionDetector& detector, double end, std::size_t samples,
-                               const std::vector<double>& openings_at_t_star, double& free_end,
+                               const std::vector<double>& openings_at_t_star, double max_growth, double& free_end,
                                std::optional<Collision>& contact) {
   const double t_star = detector.assembly().t_star();
   const double width = detector.assembly().flexion_interval().width();
@@ -346,10 +392,12 @@ std::optional<Collision> sweep(const CollisionDetector& detector, double end, st
   std::vector<double> good_openings = openings_at_t_star, next;
   double good = t_star;
   Points x_good = detector.positions(t_star);
+  const double limit = max_growth > 0.0 ? max_growth * bounding_diagonal(x_good) : std::numeric_limits<double>::infinity();
   for (std::size_t k = 1; k <= samples; ++k) {
     const double t = sample_t(k);
     const Points x = detector.positions(t);
-    std::optional<Collision> hit = detector.continue_hinges(x, good_openings, next, t);
+    std::optional<Collision> hit = detector.grown(x, t, limit, max_growth);
+    if (!hit) hit = detector.continue_hinges(x, good_openings, next, t);
     if (!hit) hit = detector.panels(x, t);
     if (!hit) {
       good = t;
@@ -365,7 +413,8 @@ std::optional<Collision> sweep(const CollisionDetector& detector, double end, st
     for (int iteration = 0; iteration < 80 && std::abs(bad - good) > 1e-12 * width; ++iteration) {
       const double mid = 0.5 * (good + bad);
       const Points xm = detector.positions(mid);
-      std::optional<Collision> h = detector.continue_hinges(xm, good_openings, next, mid);
+      std::optional<Collision> h = detector.grown(xm, mid, limit, max_growth);
+      if (!h) h = detector.continue_hinges(xm, good_openings, next, mid);
       if (!h) h = detector.panels_among(xm, mid, pairs);
       if (h) {
         bad = mid;
@@ -389,6 +438,10 @@ std::optional<Collision> sweep(const CollisionDetector& detector, double end, st
 
 std::string describe_collision(const Collision& c, bool several_members, bool contact) {
   const std::string pair = describe(c.a, several_members) + " and " + describe(c.b, several_members);
+  if (c.kind == Collision::Kind::growth) {
+    return "the design grows past " + format_human(c.growth) + " times its size at t* (bounding-box diagonal; --max-growth), " +
+           describe(c.a, several_members) + " furthest out";
+  }
   if (c.kind == Collision::Kind::hinge) {
     return "the hinge between " + pair + (contact ? " folds flat (the panels touch, no more)" : " folds shut and through");
   }
@@ -403,7 +456,8 @@ nlohmann::json panel_json(const PanelId& p) {
 
 nlohmann::json collision_json(const std::optional<Collision>& c) {
   if (!c) return nullptr;
-  return {{"kind", c->kind == Collision::Kind::hinge ? "hinge" : "panels"},
+  const char* kind = c->kind == Collision::Kind::hinge ? "hinge" : c->kind == Collision::Kind::growth ? "growth" : "panels";
+  return {{"kind", kind},
           {"t", c->t},
           {"panels", {panel_json(c->a), panel_json(c->b)}}};
 }
@@ -445,11 +499,12 @@ MotionMargins motion_margins(const Design& design, double from, double to, std::
   m.t_depth = m.t_folded = t_star;
   m.folded = -std::numeric_limits<double>::infinity();
   auto look = [&](const Points& x, const std::vector<double>& openings, double t) {
-    const double depth = detector.deepest(x);
+    const auto [depth, sum] = detector.deepest(x);
     if (depth > m.depth) {
       m.depth = depth;
       m.t_depth = t;
     }
+    m.depth_sum = std::max(m.depth_sum, sum);
     for (double o : openings) {
       const double past = std::max(-o, o - two_pi);  // how far past shut (0 or 360 degrees)
       if (past > m.folded) {
@@ -459,6 +514,7 @@ MotionMargins motion_margins(const Design& design, double from, double to, std::
     }
   };
   const Points x0 = detector.positions(t_star);
+  const double size_at_star = bounding_diagonal(x0);
   const std::vector<double> start = detector.openings(x0);
   look(x0, start, t_star);
   for (const double end : {to, from}) {
@@ -473,6 +529,7 @@ MotionMargins motion_margins(const Design& design, double from, double to, std::
       detector.continue_hinges(x, openings, next, t);
       openings.swap(next);
       look(x, openings, t);
+      if (size_at_star > 0.0) m.growth = std::max(m.growth, bounding_diagonal(x) / size_at_star);
     }
   }
   if (!std::isfinite(m.folded)) m.folded = -std::numbers::pi;  // no hinges
@@ -520,7 +577,7 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
   r.at_t_star = detector.continue_hinges(x, openings, unused, r.t_star);
   if (!r.at_t_star) r.at_t_star = detector.panels(x, r.t_star);
   if (r.at_t_star) {
-    r.depth_at_t_star = detector.deepest(x);
+    r.depth_at_t_star = detector.deepest(x).first;
     return r;
   }
   // The two sides are independent: on large designs the lower one runs on a
@@ -534,13 +591,13 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
     std::exception_ptr failure;
     std::thread lower([&] {
       try {
-        r.lower = sweep(second, r.t_lambda, options.samples_per_side, openings, r.free_lower, r.lower_contact);
+        r.lower = sweep(second, r.t_lambda, options.samples_per_side, openings, options.max_growth, r.free_lower, r.lower_contact);
       } catch (...) {
         failure = std::current_exception();
       }
     });
     try {
-      r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, r.free_upper, r.upper_contact);
+      r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, options.max_growth, r.free_upper, r.upper_contact);
     } catch (...) {
       lower.join();
       throw;
@@ -550,8 +607,8 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
     return r;
   }
 #endif
-  r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, r.free_upper, r.upper_contact);
-  r.lower = sweep(detector, r.t_lambda, options.samples_per_side, openings, r.free_lower, r.lower_contact);
+  r.upper = sweep(detector, r.t_mu, options.samples_per_side, openings, options.max_growth, r.free_upper, r.upper_contact);
+  r.lower = sweep(detector, r.t_lambda, options.samples_per_side, openings, options.max_growth, r.free_lower, r.lower_contact);
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include "phedra/errors.h"
 #include "phedra/fold_angle.h"
 #include "phedra/number_format.h"
+#include "phedra/panel_size.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,6 +81,15 @@ Mesh build_mesh(const Design& design, PieceMode mode) {
     if (face.normal.squaredNorm() > 0.0) face.normal.normalize();
     if (c.size() < 3) face.shape = PanelShape::degenerate;
     for (std::size_t k = 0; k < c.size(); ++k) out.edges[out.key(face, k, cells)].push_back({f, k});
+  }
+  // Simple panels beyond the size bounds cannot be cut either (filled red, like bow-ties).
+  const std::vector<PanelProportions> size = panel_proportions(out.x, mesh.faces);
+  const SizeBounds bounds;
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    Face& face = out.faces[f];
+    if (!is_valid_panel(face.shape)) continue;
+    if (size[f].edge_ratio > bounds.max_edge_ratio) face.shape = PanelShape::oversized;
+    else if (size[f].aspect < bounds.min_aspect) face.shape = PanelShape::sliver;
   }
   return out;
 }

@@ -212,9 +212,9 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
     return out;
   }
   Problem problem(*variables, search, panels, input.assembly.model_size());
-  problem.set_mode(ShapeMode::positive_net, false, 1.0);
+  problem.set_mode(ShapeMode::positive_net, MotionMode::none, 1.0);
   std::vector<double> x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
-  problem.set_mode(ShapeMode::exact, false, 1.0);
+  problem.set_mode(ShapeMode::exact, MotionMode::none, 1.0);
   if (total_violation(problem, x) > 0.0 && left() > 0.0) {
     x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
   }

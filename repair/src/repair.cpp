@@ -19,8 +19,9 @@ using json = nlohmann::json;
 using namespace repair_search;
 
 /// The buildability the result is judged by: the report itself, 200 samples a side.
-BuildabilityReport verify(const json& preset, bool sweep = true) {
+BuildabilityReport verify(const json& preset, const SizeBounds& bounds, bool sweep = true) {
   BuildabilityOptions options;
+  options.bounds = bounds;
   options.sweep_motion = sweep;
   options.diagnosis.hints = false;
   options.sweep.samples_per_side = 200;
@@ -87,17 +88,17 @@ double buildable_fraction(const BuildabilityReport& r) {
   return std::clamp(std::min(low, high), 0.0, 1.0);
 }
 
-RepairResult repair(const json& preset, const RepairOptions& options) {
-  if (!(options.required_fraction >= 0.0 && options.required_fraction <= 1.0)) {
-    throw InvalidInputError("--require", "the buildable part must be a fraction in [0, 1]");
-  }
+namespace {
+
+/// One search varying options.vary (repair() escalates).
+RepairResult repair_varying(const json& preset, const RepairOptions& options) {
   const Clock::time_point start = Clock::now();
   RepairResult r;
   const Design input = design_from_json(preset);
-  const double size = input.assembly.model_size();
+  const double size = bounded_model_size(input, options.bounds);  // an oversized panel's length would swamp it
   const DesignVariables variables(preset, options.vary, size, options.fixed);  // bad --vary: an error even when nothing is to do
   r.notes = variables.notes();
-  r.before = verify(preset);
+  r.before = verify(preset, options.bounds);
   const double required = options.required_fraction;
   auto meets = [&](const BuildabilityReport& b, double fraction) {
     return b.panels_simple() && b.interval() && buildable_fraction(b) >= fraction - 1e-12;
@@ -141,7 +142,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
     c.x = x;
     c.distance = variables.distance(x);
     try {
-      c.report = verify(variables.preset_at(x));
+      c.report = verify(variables.preset_at(x), options.bounds);
     } catch (const Error&) {
       return false;
     }
@@ -164,23 +165,24 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   const std::vector<double> x0 = variables.start();
   consider(x0, required);  // the input itself: the widest part to beat
 
-  // Stage 1, panel shapes alone (cheap: no motion): from the input and from
-  // perturbed starts (the simple designs need not form one connected set), a
-  // design with every panel simple (the positive net first, the exact rule when
-  // that fails), moved towards the input (bisection) and to the nearest one.
+  // Stage 1, panel shapes and the configuration at t* (cheap: no sweep): from
+  // the input and from perturbed starts (the simple designs need not form one
+  // connected set), a design with every panel simple (the positive net first,
+  // the exact rule when that fails), moved towards the input (bisection) and to
+  // the nearest one; then free of collisions at t* the same way.
   std::optional<Candidate> closest_shapes;  // the fewest panels not simple, when no start succeeds
   auto simple_from = [&](const std::vector<double>& from) -> std::optional<std::vector<double>> {
     ++r.starts;
     std::vector<double> x = from;
-    problem.set_mode(ShapeMode::exact, false, required);
+    problem.set_mode(ShapeMode::exact, MotionMode::none, required);
     if (total_violation(problem, x) > 0.0) {
-      problem.set_mode(ShapeMode::positive_net, false, required);
+      problem.set_mode(ShapeMode::positive_net, MotionMode::none, required);
       x = feasible_search(variables, problem, x, options, time_left(), options.max_evaluations);
-      problem.set_mode(ShapeMode::exact, false, required);
+      problem.set_mode(ShapeMode::exact, MotionMode::none, required);
       if (total_violation(problem, x) > 0.0) x = feasible_search(variables, problem, from, options, time_left(), options.max_evaluations);
       if (total_violation(problem, x) > 0.0) {
         try {
-          Candidate c{x, variables.distance(x), -1.0, verify(variables.preset_at(x), false)};
+          Candidate c{x, variables.distance(x), -1.0, verify(variables.preset_at(x), options.bounds, false)};
           if (!closest_shapes || c.report.invalid.size() < closest_shapes->report.invalid.size()) closest_shapes = c;
         } catch (const Error&) {
         }
@@ -189,12 +191,22 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
       x = towards(problem, x, x0);
       x = local_search(variables, problem, x, options, time_left(), options.max_evaluations);
     }
+    // Then the configuration at t* free of collisions too (one snapshot a design:
+    // still cheap): most designs that fail collide there, not later in the motion.
+    problem.set_mode(ShapeMode::exact, MotionMode::t_star, required);
+    if (total_violation(problem, x) > 0.0) {
+      std::vector<double> free = feasible_search(variables, problem, x, options, time_left(), options.max_evaluations);
+      if (total_violation(problem, free) == 0.0) {
+        free = towards(problem, free, x0);
+        x = local_search(variables, problem, free, options, time_left(), options.max_evaluations);
+      }  // else the simple design, colliding at t*: stage 2 tries it with the motion
+    }
     return x;
   };
   // Stage 2, the motion: from a simple design, no collision over the required
   // part, then towards the input and to the nearest such design.
   auto motion_from = [&](std::vector<double> x, double fraction) {
-    problem.set_mode(ShapeMode::exact, true, fraction);
+    problem.set_mode(ShapeMode::exact, MotionMode::range, fraction);
     // Already free over the required part: the nearest simple design is the nearest buildable one.
     if (total_violation(problem, x) == 0.0) return consider(x, fraction);
     x = feasible_search(variables, problem, x, options, time_left(), options.motion_evaluations);
@@ -218,6 +230,18 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
       simple.push_back(std::move(*found));
       if (time_left() > 0.0 && motion_from(simple.back(), required)) break;
       if (simple.size() >= options.shape_candidates) break;
+    }
+  }
+  if (!best && time_left() > 0.0) {
+    // The local searches from the input stalled (on random designs mostly at a
+    // collision at t*): scattered starts, each judged by shapes and t* at once.
+    problem.set_mode(ShapeMode::exact, MotionMode::t_star, required);
+    if (std::optional<std::vector<double>> found =
+            scatter_search(variables, problem, x0, options.scatter_samples, 3, rng, options, 0.5 * time_left())) {
+      std::vector<double> x = towards(problem, *found, x0);
+      x = local_search(variables, problem, x, options, time_left(), options.max_evaluations);
+      simple.insert(simple.begin(), x);
+      motion_from(x, required);
     }
   }
   if (!best && options.widest_fallback && !simple.empty()) {
@@ -245,7 +269,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
         }
         if (!any) continue;
         try {
-          const BuildabilityReport report = verify(variables.preset_at(tidy));
+          const BuildabilityReport report = verify(variables.preset_at(tidy), options.bounds);
           if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12) {
             best->x = tidy;
             best->distance = variables.distance(tidy);
@@ -287,6 +311,46 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   }
   r.seconds = seconds_since(start);
   return r;
+}
+
+}  // namespace
+
+RepairResult repair(const json& preset, const RepairOptions& options) {
+  if (!(options.required_fraction >= 0.0 && options.required_fraction <= 1.0)) {
+    throw InvalidInputError("--require", "the buildable part must be a fraction in [0, 1]");
+  }
+  const bool trajectory = std::find(options.vary.begin(), options.vary.end(), VariableGroup::trajectory) !=
+                          options.vary.end();
+  const bool may_escalate = options.escalate && !trajectory;
+  RepairOptions first = options;
+  if (may_escalate) first.max_seconds = 0.6 * options.max_seconds;  // the rest for the trajectory
+  RepairResult r = repair_varying(preset, first);
+  r.varied = options.vary;
+  if (r.found || r.already_buildable || !may_escalate || !r.before.self_crossing_members.empty()) return r;
+  // What may vary did not suffice: the trajectory too (it reaches what heights
+  // and turns cannot: a segment nearly in its profile plane, a reversed one).
+  RepairOptions wider = options;
+  wider.vary.push_back(VariableGroup::trajectory);
+  wider.max_seconds = std::max(1e-3, options.max_seconds - r.seconds);
+  RepairResult e = repair_varying(preset, wider);
+  e.varied = wider.vary;
+  e.escalated = true;
+  e.seconds += r.seconds;
+  e.evaluations += r.evaluations;
+  e.starts += r.starts;
+  std::string names;
+  for (VariableGroup g : options.vary) names += (names.empty() ? "" : ", ") + to_string(g);
+  e.notes.push_back(e.found ? names + " alone could not make it buildable: the trajectory was varied too"
+                            : "neither " + names + " nor the trajectory as well could make it buildable");
+  if (!e.found) {
+    // The closer of the two failures, said so.
+    if (r.after.invalid.size() < e.after.invalid.size()) {
+      e.after = r.after;
+      e.closest = r.closest;
+      e.closest_preset = r.closest_preset;
+    }
+  }
+  return e;
 }
 
 }  // namespace phedra

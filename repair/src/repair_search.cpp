@@ -3,6 +3,7 @@
 #include "phedra/design_preset.h"
 #include "phedra/errors.h"
 #include "phedra/panel_nets.h"
+#include "phedra/panel_size.h"
 #include "phedra/self_intersection.h"
 
 #include <nlopt.hpp>
@@ -58,14 +59,31 @@ const std::vector<double>& Problem::at(const double* x) {
   try {
     const Design d = design_from_json(variables_.preset_at(cached_x_));
     const Assembly& a = d.assembly;
-    std::size_t k = 0;
+    std::vector<PanelNets> faces;
     for (std::size_t m = 0; m < a.member_count(); ++m) {
-      for (std::size_t f = 0; f < a.topology(m).face_count() && k < panels_; ++f, ++k) {
-        const PanelNets nets = panel_nets(a, m, f);
+      for (std::size_t f = 0; f < a.topology(m).face_count() && faces.size() < panels_; ++f) faces.push_back(panel_nets(a, m, f));
+    }
+    // The size bounds (panel_size.h) as margins: the log of the longest edge over
+    // its bound, of the aspect's bound over the aspect (<= 0 within them).
+    std::vector<double> longest(faces.size());
+    for (std::size_t k = 0; k < faces.size(); ++k) longest[k] = std::sqrt(longest_edge_squared(faces[k].general));
+    std::vector<double> sorted = longest;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double median = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+    const SizeBounds& bounds = options_.bounds;
+    std::size_t k = 0;
+    for (; k < faces.size(); ++k) {
+      {
+        const PanelNets& nets = faces[k];
         double* slot = &cached_[slots_per_face * k];
         if (shapes_ == ShapeMode::exact) {
           slot[0] = options_.shape_target - std::clamp(shape_margin(nets), -1.0, 1.0);
           std::fill(slot + 1, slot + slots_per_face, 0.0);
+          if (bounds.max_edge_ratio > 0.0 && median > 0.0) {
+            slot[1] = std::clamp(std::log(longest[k] / (bounds.max_edge_ratio * median)), -1.0, 1.0);
+          }
+          const double aspect = longest[k] > 0.0 ? quad_area(nets.general) / (longest[k] * longest[k]) : 0.0;
+          if (bounds.min_aspect > 0.0) slot[2] = aspect > 0.0 ? std::clamp(std::log(bounds.min_aspect / aspect), -1.0, 1.0) : 1.0;
         } else {
           const auto values = positive_net_values(nets, size_, options_.edge_target, options_.shape_target);
           std::copy(values.begin(), values.end(), slot);
@@ -77,12 +95,15 @@ const std::vector<double>& Problem::at(const double* x) {
       return cached_;
     }
     const std::size_t motion = slots_per_face * panels_;
-    cached_[motion] = cached_[motion + 1] = 0.0;
-    if (motion_) {
+    cached_[motion] = cached_[motion + 1] = cached_[motion + 2] = 0.0;
+    if (motion_ == MotionMode::t_star) {
+      cached_[motion] = 10.0 * motion_margins(d, a.t_star(), a.t_star(), 0).depth_sum / size_;
+    } else if (motion_ == MotionMode::range) {
       const auto [from, to] = required_range(a, fraction_);
       const MotionMargins m = motion_margins(d, from, to, options_.motion_samples);
-      cached_[motion] = 10.0 * m.depth / size_;
+      cached_[motion] = 10.0 * m.depth_sum / size_;
       cached_[motion + 1] = m.folded + 1e-6;  // a hinge must stay open inside the range
+      if (bounds.max_growth > 0.0) cached_[motion + 2] = std::min(std::log(m.growth / bounds.max_growth), 1.0);
     }
   } catch (const Error&) {
   }
@@ -230,6 +251,51 @@ std::vector<double> local_search(const DesignVariables& variables, Problem& prob
   opt.set_maxeval(static_cast<int>(evaluations));
   run_opt(opt, x);
   return nearest.best;
+}
+
+std::optional<std::vector<double>> scatter_search(const DesignVariables& variables, Problem& problem,
+                                                  const std::vector<double>& center, std::size_t samples,
+                                                  std::size_t polish, std::mt19937_64& rng, const RepairOptions& options,
+                                                  double seconds_left) {
+  const Clock::time_point start = Clock::now();
+  std::normal_distribution<double> normal;
+  const std::vector<DesignVariable>& v = variables.variables();
+  std::optional<std::vector<double>> nearest;
+  double nearest_distance = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, std::vector<double>>> least;  // (violation, x), the `polish` smallest
+  for (std::size_t s = 0; s < samples && seconds_since(start) < seconds_left; ++s) {
+    const double radius = 0.05 + 0.55 * static_cast<double>(s % 12) / 11.0;
+    std::vector<double> x = center;
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      if (v[k].fixed) continue;
+      const double reach = v[k].kind == DesignVariable::Kind::turn ? 0.5 * std::numbers::pi : 0.5 * v[k].scale;
+      x[k] = std::clamp(x[k] + radius * v[k].scale * normal(rng), v[k].start - reach, v[k].start + reach);
+    }
+    const double violation = total_violation(problem, x);
+    if (violation == 0.0) {
+      const double d = variables.distance(x);
+      if (d < nearest_distance) {
+        nearest_distance = d;
+        nearest = x;
+      }
+    } else if (!nearest) {
+      least.emplace_back(violation, std::move(x));
+      std::sort(least.begin(), least.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      if (least.size() > polish) least.pop_back();
+    }
+  }
+  if (nearest) return nearest;
+  for (const auto& [violation, x] : least) {
+    std::vector<double> found =
+        feasible_search(variables, problem, x, options, seconds_left - seconds_since(start), options.max_evaluations);
+    if (total_violation(problem, found) > 0.0) continue;
+    const double d = variables.distance(found);
+    if (d < nearest_distance) {
+      nearest_distance = d;
+      nearest = std::move(found);
+    }
+  }
+  return nearest;
 }
 
 std::string pointer_field(const nlohmann::json::json_pointer& pointer) {

@@ -9,6 +9,8 @@
 #include <nlohmann/json.hpp>
 
 #include <chrono>
+#include <optional>
+#include <random>
 #include <string>
 #include <cstddef>
 #include <utility>
@@ -37,24 +39,32 @@ enum class ShapeMode {
 
 constexpr std::size_t slots_per_face = 5;
 
+/// How much of the motion the constraints see.
+enum class MotionMode {
+  none,     ///< panel shapes alone
+  t_star,   ///< and no collision in the configuration at t* (one snapshot: cheap)
+  range,    ///< and none over the required part of the interval (a sweep each)
+};
+
 /// The optimizer's view of a design: its constraint values (<= 0 satisfied).
 class Problem {
  public:
   Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size)
       : variables_(variables), options_(options), panels_(panels), size_(size) {}
 
-  void set_mode(ShapeMode shapes, bool motion, double fraction) {
+  void set_mode(ShapeMode shapes, MotionMode motion, double fraction) {
     shapes_ = shapes;
     motion_ = motion;
     fraction_ = fraction;
     cached_.clear();
   }
-  std::size_t constraints() const { return slots_per_face * panels_ + 2; }
+  std::size_t constraints() const { return slots_per_face * panels_ + 3; }
   std::size_t evaluations() const { return evaluations_; }
 
-  /// Constraint values at x: per member face its shape values (ShapeMode), then
-  /// the deepest penetration (x 10 over the model size) and the furthest hinge
-  /// past shut (radians) over the required motion (0 without the motion).
+  /// Constraint values at x: per member face its shape values (ShapeMode; exact
+  /// also its size bounds), then the deepest penetration (x 10 over the model
+  /// size), the furthest hinge past shut (radians) and the growth's log over its
+  /// bound over the part of the motion the mode sees (0 for none).
   const std::vector<double>& at(const double* x);
 
  private:
@@ -63,7 +73,7 @@ class Problem {
   std::size_t panels_;
   double size_;
   ShapeMode shapes_ = ShapeMode::exact;
-  bool motion_ = false;
+  MotionMode motion_ = MotionMode::none;
   double fraction_ = 1.0;
   std::size_t evaluations_ = 0;
   std::vector<double> cached_x_, cached_;
@@ -85,6 +95,17 @@ std::vector<double> towards(Problem& problem, const std::vector<double>& feasibl
 /// One local search from the feasible x; returns the nearest feasible design it saw.
 std::vector<double> local_search(const DesignVariables& variables, Problem& problem, std::vector<double> x,
                                  const RepairOptions& options, double seconds_left, std::size_t evaluations);
+
+/// Scattered starts: `samples` designs drawn about `center` at radii from 5 % to
+/// 60 % of each variable's scale (within its bounds), judged by the problem's
+/// current mode; the feasible one nearest the input, else Subplex's feasibility
+/// search from the `polish` least violating ones (the nearest feasible result).
+/// Empty when none is feasible. For the low-dimensional problems where local
+/// searches from the input stall (the feasible designs lie in a far component).
+std::optional<std::vector<double>> scatter_search(const DesignVariables& variables, Problem& problem,
+                                                  const std::vector<double>& center, std::size_t samples,
+                                                  std::size_t polish, std::mt19937_64& rng, const RepairOptions& options,
+                                                  double seconds_left);
 
 /// A JSON pointer as the field users read: "/tube/apex_heights/3" -> "tube.apex_heights[3]".
 std::string pointer_field(const nlohmann::json::json_pointer& pointer);

@@ -3,13 +3,16 @@
 // the one notion every command, export and the designer report (MATH.md
 // section 9). A design is buildable over [a, b] when every panel is simple
 // (convex, or non-convex with one reflex corner; the triangles of boundary
-// columns are fine) and, for every t in [a, b], no two panels penetrate and no
-// hinge folds through (contact at a flexion limit is allowed). Panels are the
+// columns are fine) within the size bounds (no panel oversized or a sliver,
+// panel_size.h) and, for every t in [a, b], no two panels penetrate, no hinge
+// folds through (contact at a flexion limit is allowed) and the design stays
+// within max_growth times its size at t*. Panels are the
 // distinct panels of panel_mesh(design), numbered as in every exported file; a
 // wall two cells share is one panel of both.
 
 #include "phedra/design.h"
 #include "phedra/panel_diagnosis.h"
+#include "phedra/panel_size.h"
 #include "phedra/self_intersection.h"
 
 #include <nlohmann/json.hpp>
@@ -30,6 +33,8 @@ struct BuildabilityOptions {
   /// samples_per_side 0: sweep_samples_for(the design's panel count).
   SelfIntersectionOptions sweep;
   DiagnosisOptions diagnosis;
+  /// The size bounds (panel_size.h): they override diagnosis.size and sweep.max_growth.
+  SizeBounds bounds;
   /// Sweep the motion for collisions (false: panel shapes and t* alone).
   bool sweep_motion = true;
 };

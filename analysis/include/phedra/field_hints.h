@@ -32,10 +32,24 @@ struct DesignField {
 /// points, helix centre, radius and rise) and direction coordinates.
 std::vector<DesignField> design_fields(const nlohmann::json& preset, double model_size);
 
+/// What a hint aims at for one face.
+struct HintGoal {
+  enum class Kind {
+    turns,   ///< a corner turn through zero (a crossed panel becomes simple)
+    edge,    ///< edge `edge` (corner edge to edge + 1) down to `value` long (an oversized panel)
+    aspect,  ///< area over longest edge squared up to `value` (a sliver)
+  };
+  Kind kind = Kind::turns;
+  int edge = 0;
+  double value = 0.0;
+};
+
 /// Hints for each of `faces` (member faces of `design`, built from `preset`):
 /// up to two, from different field groups, best first. Trajectory and direction
-/// fields are tried only within one row of a face's strip.
+/// fields are tried only within one row of a face's strip. `goals` (one per
+/// face; missing ones: turns) says what each face's hint aims at.
 std::vector<std::vector<FieldHint>> field_hints(const nlohmann::json& preset, const Design& design,
-                                                const std::vector<MemberFace>& faces);
+                                                const std::vector<MemberFace>& faces,
+                                                const std::vector<HintGoal>& goals = {});
 
 }  // namespace phedra

@@ -14,6 +14,7 @@
 
 #include "phedra/design.h"
 #include "phedra/panel_nets.h"
+#include "phedra/panel_size.h"
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,8 @@ enum class PanelCause {
   edge_reversed,           ///< one edge scale has the other sign than the panel's other three
   boundary_segment_short,  ///< boundary column: transversal scale q in (0, 1)
   degenerate,              ///< no area: its corners are collinear (or the axial face is degenerate)
+  oversized,               ///< simple, but its longest edge beyond SizeBounds::max_edge_ratio of the median panel's
+  sliver,                  ///< simple, but its area below SizeBounds::min_aspect of its longest edge squared
 };
 
 std::string to_string(PanelCause cause);
@@ -74,6 +77,8 @@ struct DiagnosisOptions {
   bool hints = true;
   /// Panels that get hints (the first ones); the others get a cause only.
   std::size_t max_hinted_panels = 24;
+  /// Panels beyond these bounds are oversized or slivers (max_growth is the sweep's).
+  SizeBounds size;
 };
 
 /// Every panel of `mesh` (panel_mesh(design)) that is not simple, with its

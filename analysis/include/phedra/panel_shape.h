@@ -11,7 +11,9 @@
 
 namespace phedra {
 
-enum class PanelShape { convex, non_convex, bow_tie, degenerate };
+/// oversized and sliver: simple, but beyond the size bounds (panel_size.h); they
+/// are not what panel_shape() returns, the buildability report sets them.
+enum class PanelShape { convex, non_convex, bow_tie, degenerate, oversized, sliver };
 
 std::string to_string(PanelShape shape);
 

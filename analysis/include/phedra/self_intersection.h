@@ -36,14 +36,20 @@ struct SelfIntersectionOptions {
   std::size_t samples_per_side = 200;
   /// Penetration (and hinge closing angle) that counts, relative to the model size.
   double relative_tolerance = 1e-9;
+  /// The free interval also ends where the bounding-box diagonal passes this many
+  /// times the one at t* (SizeBounds::max_growth; 0: no bound).
+  double max_growth = 10.0;
 };
 
 /// What ends an intersection-free stretch.
 struct Collision {
-  enum class Kind { panels, hinge };
+  /// growth: not a collision but the size bound (a = b = a panel of the vertex
+  /// furthest out): the design grows past max_growth times its size at t*.
+  enum class Kind { panels, hinge, growth };
   Kind kind = Kind::panels;
   PanelId a, b;
   double t = 0.0;  ///< where it starts (the end of the free interval)
+  double growth = 0.0;  ///< growth: the bound it passes (max_growth)
 };
 
 struct InvalidPanel {
@@ -86,7 +92,11 @@ std::string describe(const Collision& collision, bool several_members, bool cont
 /// How badly a motion collides, as numbers a search can drive to zero.
 struct MotionMargins {
   double depth = 0.0;   ///< the deepest penetration of two simple panels at any sample (> 0: they cut; a length)
+  /// The penetrations of every penetrating pair added up, at the sample where
+  /// that sum is largest: a search sees each pair it separates, not only the deepest.
+  double depth_sum = 0.0;
   double folded = 0.0;  ///< the furthest any hinge went past shut (radians; > 0 folded through, <= 0 fine)
+  double growth = 1.0;  ///< the largest bounding-box diagonal at a sample over the one at t*
   double t_depth = 0.0, t_folded = 0.0;  ///< where
 };
 

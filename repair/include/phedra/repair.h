@@ -41,7 +41,16 @@ struct RepairOptions {
   std::size_t shape_candidates = 3;  ///< designs with simple panels to try the motion from
   std::size_t max_evaluations = 3000;  ///< per local search of the panel shapes (cheap: no motion)
   std::size_t motion_evaluations = 300;  ///< per search with the motion (each design sweeps it)
+  /// Scattered designs tried when the local searches from the input find no design
+  /// with simple panels and t* free of collisions (repair_search.h, scatter_search).
+  std::size_t scatter_samples = 4000;
   double max_seconds = 60.0;         ///< in all
+  /// When no design is found varying `vary` and the trajectory is not among
+  /// them: search again with the trajectory varied too (60 % of the time for the
+  /// first search then), and say so (RepairResult::escalated, a note).
+  bool escalate = true;
+  /// What counts as buildable by size (--max-growth): the repaired design keeps within them.
+  SizeBounds bounds;
   unsigned seed = 1;
 };
 
@@ -66,7 +75,9 @@ struct RepairResult {
   std::size_t evaluations = 0;     ///< designs built by the search
   std::size_t starts = 0;          ///< local searches run
   double seconds = 0.0;
-  std::vector<std::string> notes;  ///< what could not be varied
+  std::vector<std::string> notes;  ///< what could not be varied, and the escalation
+  std::vector<VariableGroup> varied;  ///< what the result varied (options.vary, or more after an escalation)
+  bool escalated = false;             ///< the trajectory was added to what varies (RepairOptions::escalate)
   /// When not found: how close it came and which constraint stayed violated.
   std::string closest;
   /// When not found: the closest design (the fewest panels not simple, then the
