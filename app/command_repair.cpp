@@ -20,6 +20,7 @@ struct RepairCommandOptions {
   std::string output;
   std::string closest;
   std::string vary = "apex_heights,directions";
+  std::string objective = "distance";
   RepairOptions repair;
   bool no_fallback = false;
   bool no_escalate = false;
@@ -81,6 +82,7 @@ nlohmann::json result_json(const RepairResult& r) {
           {"notes", r.notes},
           {"varied", group_list(r.varied)},
           {"escalated", r.escalated},
+          {"nearest_changes", r.nearest_changes},
           {"closest", r.closest.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.closest)}};
 }
 
@@ -108,6 +110,12 @@ void add_repair_command(CLI::App& app, Context& context) {
                 "(by default it is tried next, and the result says so)");
   sub->add_flag("--no-fallback", o->no_fallback,
                 "Fail (exit 1) rather than settle for a smaller buildable part than --require asks");
+  sub->add_option("--objective", o->objective,
+                  "What nearest means: distance (the smallest change, relative to the model size; it may spread "
+                  "over many fields) or fields (the fewest fields changed: after the nearest design, searches "
+                  "varying only its largest 1, 2, 4, ... changes; up to --max-seconds more)")
+      ->check(CLI::IsMember({"distance", "fields"}))
+      ->capture_default_str();
   add_size_bound_options(sub, o->repair.bounds);
   sub->add_option("--restarts", o->repair.restarts,
                   "Perturbed starts after the input for the search of simple panels (their set need not be connected)")
@@ -129,6 +137,7 @@ void add_repair_command(CLI::App& app, Context& context) {
     // An explicit --vary is what the user allows; the default may grow to the trajectory.
     o->repair.escalate = !o->no_escalate && sub->count("--vary") == 0;
     o->repair.widest_fallback = !o->no_fallback;
+    o->repair.objective = o->objective == "fields" ? RepairObjective::fields : RepairObjective::distance;
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     const RepairResult r = repair(loaded.preset, o->repair);
     const std::string name = loaded.preset.value("name", std::string("unnamed"));
@@ -151,7 +160,9 @@ void add_repair_command(CLI::App& app, Context& context) {
           out << "        the required part (" << percent(o->repair.required_fraction)
               << " of the way from t* to each limit) could not be reached; this is the widest found\n";
         }
-        out << "changed " << r.changes.size() << " field" << (r.changes.size() == 1 ? "" : "s") << ", distance "
+        out << "changed " << r.changes.size() << " field" << (r.changes.size() == 1 ? "" : "s");
+        if (o->repair.objective == RepairObjective::fields) out << " (the nearest design changes " << r.nearest_changes << ")";
+        out << ", distance "
             << format_short(r.distance) << " (relative to the model size, docs/design.md):\n";
         for (const FieldChange& c : r.changes) {
           out << "  " << c.field << ": " << human_value(c.before) << " -> " << human_value(c.after);

@@ -141,9 +141,21 @@ TEST_CASE("repair: bad options and presets exit 2 naming the option or field", "
   fails({"repair", repairable, "-o", dir / "r.txt"}, "--output: the repaired preset is written as .json");
   fails({"repair", repairable, "-o", out, "--closest", dir / "c.txt"}, "--closest: the closest design is written as .json");
   fails({"repair", repairable, "-o", out, "--require", "1.5"}, "--require");
+  fails({"repair", repairable, "-o", out, "--objective", "fewest"}, "--objective");
+  fails({"repair", repairable, "-o", out, "--max-growth", "-2"}, "--max-growth");
   fails({"repair", presets + "/helix-tube.json", "-o", out, "--vary", "directions"},
         "--vary: nothing to change: the preset has no numbers in the groups asked for");
   fails({"repair", data + "/bad/apexes-consecutive-equal.json", "-o", out}, "apex_heights[2]: equals apex_heights[1]");
+}
+
+TEST_CASE("repair --objective fields: says how many fields the nearest design changes", "[repair][cli]") {
+  TempDir dir;
+  const Run r = phedra_cli({"repair", repairable, "-o", dir / "r.json", "--objective", "fields"});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.out, Contains("changed 1 field (the nearest design changes 1)"));
+  const Run j = phedra_cli({"repair", repairable, "-o", dir / "j.json", "--objective", "fields", "--json"});
+  CHECK(nlohmann::json::parse(j.out)["nearest_changes"] == 1);
+  CHECK(phedra_cli({"check", dir / "r.json"}).code == 0);
 }
 
 TEST_CASE("repair: an output that cannot be written exits 3", "[repair][cli]") {

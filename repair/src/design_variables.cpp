@@ -162,6 +162,7 @@ DesignVariables::DesignVariables(const json& preset, const std::vector<VariableG
   for (std::size_t k = 0; k < variables_.size(); ++k) {
     const bool turn = variables_[k].kind == DesignVariable::Kind::turn;
     const std::string pointer = turn ? turns_[slot_[k]].pointer.to_string() : lengths_[slot_[k]].pointer.to_string();
+    variables_[k].pointer = pointer;
     for (const std::string& f : fixed) {
       if (pointer == f || pointer.rfind(f + "/", 0) == 0) variables_[k].fixed = true;
     }

@@ -315,7 +315,74 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
 
 }  // namespace
 
+namespace {
+
+/// The nearest design (escalated when it must be).
+RepairResult nearest_design(const json& preset, const RepairOptions& options);
+
+/// RepairObjective::fields: from the nearest design's changes, largest first,
+/// vary only the top 1, 2, 4, ... (every other field held) until a search meets
+/// the same requirement; the result changes fewer fields, or is the nearest.
+RepairResult fewest_fields(const json& preset, const RepairOptions& options, RepairResult nearest) {
+  nearest.nearest_changes = nearest.changes.size();
+  if (!nearest.found || nearest.already_buildable || nearest.changes.size() <= 1) return nearest;
+  const Clock::time_point start = Clock::now();
+  std::vector<FieldChange> ranked = nearest.changes;
+  std::stable_sort(ranked.begin(), ranked.end(), [](const FieldChange& a, const FieldChange& b) { return a.relative > b.relative; });
+  const Design input = design_from_json(preset);
+  const DesignVariables variables(preset, nearest.varied, bounded_model_size(input, options.bounds), options.fixed);
+  RepairResult best = nearest;
+  std::size_t tried = 0;
+  for (std::size_t m = 1; m < best.changes.size(); m *= 2) {
+    const double left = options.max_seconds - seconds_since(start);
+    if (left <= 0.0) break;
+    std::vector<std::string> varied;
+    for (std::size_t k = 0; k < m && k < ranked.size(); ++k) varied.push_back(ranked[k].field);
+    RepairOptions subset = options;
+    subset.vary = nearest.varied;
+    subset.escalate = false;
+    subset.objective = RepairObjective::distance;
+    subset.required_fraction = nearest.fraction;
+    subset.widest_fallback = false;
+    subset.max_seconds = left;
+    for (const DesignVariable& v : variables.variables()) {
+      if (std::find(varied.begin(), varied.end(), v.field) == varied.end()) subset.fixed.push_back(v.pointer);
+    }
+    ++tried;
+    RepairResult r = repair_varying(preset, subset);
+    best.evaluations += r.evaluations;
+    best.starts += r.starts;
+    if (r.found && r.fraction >= nearest.fraction - 1e-12 && r.changes.size() < best.changes.size()) {
+      const std::size_t evaluations = best.evaluations, starts = best.starts;
+      r.varied = nearest.varied;
+      r.escalated = nearest.escalated;
+      r.notes = nearest.notes;
+      r.evaluations = evaluations;
+      r.starts = starts;
+      best = std::move(r);
+      break;
+    }
+  }
+  best.nearest_changes = nearest.changes.size();
+  best.seconds = nearest.seconds + seconds_since(start);
+  best.notes.push_back("--objective fields: " + std::to_string(best.changes.size()) + " fields changed, the nearest design changes " +
+                       std::to_string(nearest.changes.size()) + " (" + std::to_string(tried) + " searches with fewer fields)");
+  return best;
+}
+
+}  // namespace
+
 RepairResult repair(const json& preset, const RepairOptions& options) {
+  const RepairResult nearest = nearest_design(preset, options);
+  if (options.objective == RepairObjective::fields) return fewest_fields(preset, options, nearest);
+  RepairResult r = nearest;
+  r.nearest_changes = r.changes.size();
+  return r;
+}
+
+namespace {
+
+RepairResult nearest_design(const json& preset, const RepairOptions& options) {
   if (!(options.required_fraction >= 0.0 && options.required_fraction <= 1.0)) {
     throw InvalidInputError("--require", "the buildable part must be a fraction in [0, 1]");
   }
@@ -352,5 +419,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
   }
   return e;
 }
+
+}  // namespace
 
 }  // namespace phedra

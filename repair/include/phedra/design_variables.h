@@ -27,6 +27,7 @@ struct DesignVariable {
   double start = 0.0;  ///< its value in the input (a turn starts at 0)
   double scale = 1.0;  ///< the model size for lengths, 1 for turns (radians)
   bool fixed = false;  ///< kept at its start (a handle the user holds)
+  std::string pointer;  ///< its JSON pointer ("/apex_heights/3", "/directions/2": the vector)
 };
 
 class DesignVariables {

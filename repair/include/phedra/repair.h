@@ -24,6 +24,12 @@
 
 namespace phedra {
 
+/// What "nearest" means (--objective).
+enum class RepairObjective {
+  distance,  ///< the smallest distance (design_variables.h): small changes, spread over many fields
+  fields,    ///< the fewest fields changed (then the smallest distance among those tried)
+};
+
 struct RepairOptions {
   std::vector<VariableGroup> vary{VariableGroup::apex_heights, VariableGroup::directions};
   /// Fields that stay as they are (JSON pointers, "/trajectory/3"): a handle the user holds.
@@ -49,6 +55,10 @@ struct RepairOptions {
   /// them: search again with the trajectory varied too (60 % of the time for the
   /// first search then), and say so (RepairResult::escalated, a note).
   bool escalate = true;
+  /// fields: after the nearest design, the same requirement met varying only the
+  /// largest 1, 2, 4, ... of its changes (a search each, all other fields held),
+  /// the first that succeeds kept; up to max_seconds more.
+  RepairObjective objective = RepairObjective::distance;
   /// What counts as buildable by size (--max-growth): the repaired design keeps within them.
   SizeBounds bounds;
   unsigned seed = 1;
@@ -78,6 +88,9 @@ struct RepairResult {
   std::vector<std::string> notes;  ///< what could not be varied, and the escalation
   std::vector<VariableGroup> varied;  ///< what the result varied (options.vary, or more after an escalation)
   bool escalated = false;             ///< the trajectory was added to what varies (RepairOptions::escalate)
+  /// The fields the nearest design (RepairObjective::distance) changed; with
+  /// RepairObjective::fields the result changes `changes.size()` <= this many.
+  std::size_t nearest_changes = 0;
   /// When not found: how close it came and which constraint stayed violated.
   std::string closest;
   /// When not found: the closest design (the fewest panels not simple, then the
