@@ -9,6 +9,8 @@
 #include "phedra/bench_cases.h"
 #include "phedra/gltf_export.h"
 #include "phedra/phedron.h"
+#include "phedra/design_preset.h"
+#include "phedra/self_intersection.h"
 
 #include <benchmark/benchmark.h>
 
@@ -32,6 +34,13 @@ void evaluate(benchmark::State& state) {
     benchmark::DoNotOptimize(out.data());
   }
   per_vertex(state, p.vertex_count());
+}
+
+/// The keep-buildable drag's check at t* on the designer bench's helix (strips = profiles - 1).
+void collision_at_t_star(benchmark::State& state) {
+  const Design design = design_from_json(bench::designer_helix_preset(static_cast<std::size_t>(state.range(0))));
+  for (auto _ : state) benchmark::DoNotOptimize(self_intersection_at_t_star(design));
+  state.counters["panels"] = static_cast<double>(panel_mesh(design).faces.size());
 }
 
 void write_buffer(benchmark::State& state) {
@@ -82,4 +91,5 @@ BENCHMARK(flexion_interval)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(construction)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);  // 0: --closure-only
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
+BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

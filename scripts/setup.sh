@@ -5,7 +5,8 @@
 # browser core, scripts/build-wasm.sh; Mesa's EGL and llvmpipe are the second
 # software WebGL renderer bench/designer.mjs measures; Blender imports and plays
 # the glTF exports in tests/blender; its glTF importer needs numpy, which
-# Debian's blender package does not depend on), then the npm packages of web/
+# Debian's blender package does not depend on; pybind11 builds the Python module,
+# pytest runs its tests and matplotlib draws the example's plot), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -18,6 +19,7 @@ packages=(
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
   blender python3-numpy
+  python3-dev python3-pybind11 python3-pytest python3-matplotlib
 )
 
 missing=()

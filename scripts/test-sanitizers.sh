@@ -5,8 +5,8 @@
 # Every C++ test runs (every module's), with smaller batches of the slow
 # property tests (PHEDRA_SANITIZE_BUILD); not run here: the clients of the
 # exports (three.js, the glTF validator, Blender, the pages in Chromium, the
-# WebAssembly core), which test files and pages the Release run already
-# checks, and `bench --quick` (timings; the bench cases and the cache reading
+# WebAssembly core, the Python module: not built here), which test files and
+# pages the Release run already checks, and `bench --quick` (timings; the bench cases and the cache reading
 # are tested apart, and the Release run runs it).
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -66,8 +66,14 @@ nlohmann::json unbuildable_default_preset() {
 }
 
 nlohmann::json unbuildable_open_preset(std::size_t strips) {
-  // The designer bench's helix (tests/js/browser.mjs), buildable as it is, with
-  // apex height 1 dragged below height 2: every face of the first column crosses.
+  // Apex height 1 dragged below height 2: every face of the first column crosses.
+  nlohmann::json p = designer_helix_preset(strips);
+  p["name"] = "helix-" + std::to_string(strips) + "-crossed";
+  p["apex_heights"][1] = -0.7;
+  return p;
+}
+
+nlohmann::json designer_helix_preset(std::size_t strips) {
   nlohmann::json trajectory = nlohmann::json::array(), directions = nlohmann::json::array();
   for (std::size_t i = 0; i <= strips; ++i) {
     const double q = 0.33 * 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(strips);
@@ -75,10 +81,10 @@ nlohmann::json unbuildable_open_preset(std::size_t strips) {
     const double r = q - 20.0 * std::numbers::pi / 180.0;
     directions.push_back({std::cos(r), std::sin(r), 0.0});
   }
-  return {{"name", "helix-" + std::to_string(strips) + "-crossed"},
+  return {{"name", "helix-" + std::to_string(strips)},
           {"trajectory", trajectory},
           {"directions", directions},
-          {"apex_heights", {-1.5, -0.7, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8}},
+          {"apex_heights", {-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8}},
           {"signs", "++++++"}};
 }
 

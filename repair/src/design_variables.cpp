@@ -53,7 +53,7 @@ std::vector<VariableGroup> parse_variable_groups(const std::string& list) {
 void DesignVariables::add_length(const Pointer& pointer, const std::string& field, double model_size) {
   slot_.push_back(lengths_.size());
   lengths_.push_back({pointer});
-  variables_.push_back({field, DesignVariable::Kind::length, preset_.at(pointer).get<double>(), model_size});
+  variables_.push_back({field, DesignVariable::Kind::length, preset_.at(pointer).get<double>(), model_size, false, ""});
 }
 
 DesignVariables::DesignVariables(const json& preset, const std::vector<VariableGroup>& groups, double model_size,
@@ -130,7 +130,7 @@ DesignVariables::DesignVariables(const json& preset, const std::vector<VariableG
           if (!is_number_array(d[i]) || d[i].size() != 3) continue;
           slot_.push_back(turns_.size());
           turns_.push_back({root / "directions" / i, d[i].get<std::vector<double>>()});
-          variables_.push_back({"directions[" + std::to_string(i) + "]", DesignVariable::Kind::turn, 0.0, 1.0});
+          variables_.push_back({"directions[" + std::to_string(i) + "]", DesignVariable::Kind::turn, 0.0, 1.0, false, ""});
         }
       } else {
         notes_.push_back("directions are given by a rule: not varied (write them out as vectors to vary them)");

@@ -41,4 +41,8 @@ nlohmann::json unbuildable_default_preset();
 /// height 2, so that every face of the first column is a bow-tie (an edit gone wrong).
 nlohmann::json unbuildable_open_preset(std::size_t strips);
 
+/// The designer bench's buildable helix (tests/js/browser.mjs helixPreset): `strips`
+/// strips on a third of a helix, profile planes turned by -20 degrees, 8 apexes all '+'.
+nlohmann::json designer_helix_preset(std::size_t strips);
+
 }  // namespace phedra::bench

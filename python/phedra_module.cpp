@@ -1,0 +1,293 @@
+// The Python module `phedra` (issue 26, docs/python.md): a design from a preset
+// (a file, a dict or JSON text), its exact motion as numpy arrays, and the
+// reports the command prints (check, buildability, metrics) as dicts, repair,
+// and the exports. Errors raise phedra.Error subclasses with the command's
+// messages: phedra.InputError (exit 2 there, with .field), phedra.FileError (3).
+
+#include "phedra/assembly_check.h"
+#include "phedra/buildability.h"
+#include "phedra/check_report.h"
+#include "phedra/design_preset.h"
+#include "phedra/errors.h"
+#include "phedra/files.h"
+#include "phedra/fold_export.h"
+#include "phedra/gltf_export.h"
+#include "phedra/mesh_export.h"
+#include "phedra/metamaterial_metrics.h"
+#include "phedra/motion_document.h"
+#include "phedra/preset.h"
+#include "phedra/repair.h"
+
+#include <nlohmann/json.hpp>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace py = pybind11;
+using json = nlohmann::json;
+
+namespace phedra::python {
+namespace {
+
+/// JSON to Python objects (through the json module: exact for every number).
+py::object to_python(const json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+json from_python(const py::handle& object) {
+  return json::parse(py::module_::import("json").attr("dumps")(object).cast<std::string>());
+}
+
+/// A design with its preset and its motion document (labels, faces, positions).
+class PyDesign {
+ public:
+  PyDesign(json preset, std::string source) : preset_(std::move(preset)), source_(std::move(source)) {
+    design_ = std::make_shared<Design>(design_from_json(preset_));
+    document_ = motion_document(*design_);
+  }
+
+  const json& preset() const { return preset_; }
+  const Design& design() const { return *design_; }
+  std::string name() const { return design_->assembly.name(); }
+  std::string kind() const { return design_->kind; }
+  double t_star() const { return document_.t_star; }
+  std::pair<double, double> flexion_interval() const { return {document_.t_lambda, document_.t_mu}; }
+  std::size_t vertex_count() const { return document_.labels.size(); }
+
+  py::dict info() const {
+    const Assembly& a = design_->assembly;
+    py::dict d;
+    d["name"] = name();
+    d["kind"] = kind();
+    d["t_star"] = t_star();
+    d["flexion_interval"] = py::make_tuple(document_.t_lambda, document_.t_mu);
+    d["motion_case"] = document_.motion_case;
+    d["members"] = a.member_count();
+    d["vertices"] = vertex_count();
+    d["faces"] = document_.faces.size();
+    d["model_size"] = a.model_size();
+    d["source"] = source_;
+    return d;
+  }
+
+  /// The vertices at t, (V, 3): the array owns the positions (moved, not copied).
+  py::array_t<double> evaluate(double t) const {
+    auto points = std::make_unique<Points>();
+    document_.positions(t, *points);
+    const py::ssize_t rows = static_cast<py::ssize_t>(points->size());
+    double* data = points->empty() ? nullptr : points->front().data();
+    py::capsule owner(points.release(), [](void* p) { delete static_cast<Points*>(p); });
+    return py::array_t<double>({rows, py::ssize_t{3}}, {py::ssize_t{3 * sizeof(double)}, py::ssize_t{sizeof(double)}}, data,
+                               owner);
+  }
+
+  /// The vertices at each t, (k, V, 3).
+  py::array_t<double> sample(const std::vector<double>& ts) const {
+    const std::size_t v = vertex_count();
+    py::array_t<double> out({static_cast<py::ssize_t>(ts.size()), static_cast<py::ssize_t>(v), py::ssize_t{3}});
+    auto view = out.mutable_unchecked<3>();
+    Points points;
+    for (std::size_t k = 0; k < ts.size(); ++k) {
+      document_.positions(ts[k], points);
+      for (std::size_t i = 0; i < v; ++i) {
+        for (int c = 0; c < 3; ++c) view(static_cast<py::ssize_t>(k), static_cast<py::ssize_t>(i), c) = points[i][c];
+      }
+    }
+    return out;
+  }
+
+  /// The quads, (F, 4) vertex indices, as every export numbers them.
+  py::array_t<std::int64_t> faces() const {
+    py::array_t<std::int64_t> out({static_cast<py::ssize_t>(document_.faces.size()), py::ssize_t{4}});
+    auto view = out.mutable_unchecked<2>();
+    for (std::size_t f = 0; f < document_.faces.size(); ++f) {
+      for (int c = 0; c < 4; ++c) view(static_cast<py::ssize_t>(f), c) = static_cast<std::int64_t>(document_.faces[f][c]);
+    }
+    return out;
+  }
+
+  std::vector<std::vector<std::size_t>> labels() const { return document_.labels; }
+
+  py::object check(std::size_t samples, double tolerance) const {
+    CheckOptions options;
+    options.samples = samples;
+    options.relative_tolerance = tolerance;
+    return to_python(report_json(check_assembly(design_->assembly, options)));
+  }
+
+  py::object buildability(double max_growth, double max_panel_ratio) const {
+    BuildabilityOptions options;
+    options.bounds.max_growth = max_growth;
+    options.bounds.max_edge_ratio = max_panel_ratio;
+    return to_python(assess_buildability(*design_, &preset_object(preset_), options).to_json());
+  }
+
+  py::object metrics(std::size_t samples) const {
+    MetricsOptions options;
+    options.samples = samples;
+    return to_python(metamaterial_metrics(*design_, options).to_json());
+  }
+
+  /// The nearest buildable design (None when none was found) and the result as a dict.
+  py::tuple repair(const std::string& vary, double require, const std::string& objective, double max_seconds) const {
+    RepairOptions options;
+    options.vary = parse_variable_groups(vary);
+    options.required_fraction = require;
+    options.max_seconds = max_seconds;
+    if (objective != "distance" && objective != "fields") {
+      throw InvalidInputError("objective", "\"" + objective + "\" is neither \"distance\" nor \"fields\"");
+    }
+    options.objective = objective == "fields" ? RepairObjective::fields : RepairObjective::distance;
+    options.escalate = vary == "apex_heights,directions";
+    RepairResult r;
+    {
+      py::gil_scoped_release release;
+      r = phedra::repair(preset_object(preset_), options);
+    }
+    py::dict result;
+    result["found"] = r.found;
+    result["already_buildable"] = r.already_buildable;
+    result["fraction"] = r.fraction;
+    result["distance"] = r.distance;
+    py::list changes;
+    for (const FieldChange& c : r.changes) {
+      py::dict change;
+      change["field"] = c.field;
+      change["before"] = to_python(c.before);
+      change["after"] = to_python(c.after);
+      change["change"] = c.change;
+      change["relative"] = c.relative;
+      changes.append(change);
+    }
+    result["changes"] = changes;
+    result["nearest_changes"] = r.nearest_changes;
+    result["escalated"] = r.escalated;
+    result["before"] = to_python(r.before.file_json());
+    result["after"] = to_python(r.after.file_json());
+    result["notes"] = r.notes;
+    result["closest"] = r.closest;
+    result["seconds"] = r.seconds;
+    py::object repaired = py::none();
+    if (r.found && !r.already_buildable) {
+      repaired = py::cast(PyDesign(named_result(r.preset, name(), vary, r), source_ + " (repaired)"));
+    }
+    return py::make_tuple(repaired, result);
+  }
+
+  /// Writes the design: .glb / .gltf (animated), .fold (frames over the
+  /// interval), .json (the motion document), .obj / .ply (at t, default t*).
+  void export_to(const std::string& path, std::size_t count, std::optional<double> t) const {
+    const std::string extension = std::filesystem::path(path).extension().string();
+    std::string bytes;
+    if (extension == ".glb" || extension == ".gltf") {
+      GltfOptions options;
+      options.binary = extension == ".glb";
+      if (t) options.static_t = *t;
+      bytes = gltf_bytes(*design_, options);
+    } else if (extension == ".fold" || extension == ".json") {
+      if (count < 2) throw InvalidInputError("count", "at least 2 configurations over the interval");
+      std::vector<double> ts;
+      if (t) {
+        ts.push_back(*t);
+      } else {
+        for (std::size_t k = 0; k < count; ++k) {
+          ts.push_back(document_.t_lambda + (document_.t_mu - document_.t_lambda) * static_cast<double>(k) / static_cast<double>(count - 1));
+        }
+      }
+      bytes = extension == ".fold" ? fold_json(*design_, ts) : motion_json(document_, ts);
+    } else if (extension == ".obj" || extension == ".ply") {
+      bytes = mesh_text(*design_, t.value_or(document_.t_star), extension);
+    } else {
+      throw InvalidInputError("path", "\"" + path + "\": the formats are .glb, .gltf, .fold, .json, .obj and .ply");
+    }
+    write_file_atomically(path, bytes);
+  }
+
+ private:
+  json preset_;
+  std::string source_;
+  std::shared_ptr<Design> design_;
+  MotionDocument document_;
+};
+
+/// A design from a path (str or os.PathLike), a dict, or JSON text.
+PyDesign load(const py::object& what) {
+  if (py::isinstance<py::dict>(what)) return PyDesign(from_python(what), "a dict");
+  const std::string text = py::str(what).cast<std::string>();
+  if (py::isinstance<py::str>(what) && !text.empty() && text.find_first_not_of(" \t\r\n") != std::string::npos &&
+      text[text.find_first_not_of(" \t\r\n")] == '{') {
+    json j;
+    try {
+      j = json::parse(text);
+    } catch (const json::parse_error& e) {
+      throw InvalidInputError("", std::string("the JSON text does not parse: ") + e.what());
+    }
+    return PyDesign(std::move(j), "JSON text");
+  }
+  json j;
+  const std::string content = read_text_file(text);
+  try {
+    j = json::parse(content);
+  } catch (const json::parse_error& e) {
+    throw InvalidInputError("", text + ": not JSON: " + e.what());
+  }
+  return PyDesign(std::move(j), text);
+}
+
+}  // namespace
+}  // namespace phedra::python
+
+PYBIND11_MODULE(phedra, m) {
+  using namespace phedra::python;
+  using phedra::python::PyDesign;
+  m.doc() = "phedra: rigid-foldable P-hedra, their exact motion, buildability, repair and exports (docs/python.md)";
+
+  static py::exception<phedra::Error> error(m, "Error");
+  static py::exception<phedra::InvalidInputError> input_error(m, "InputError", error.ptr());
+  static py::exception<phedra::IOError> file_error(m, "FileError", error.ptr());
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const phedra::InvalidInputError& e) {
+      py::object instance = py::reinterpret_borrow<py::object>(input_error.ptr())(e.what());
+      instance.attr("field") = e.field();  // the preset field, as the command names it ("" for the whole input)
+      PyErr_SetObject(input_error.ptr(), instance.ptr());
+    } catch (const phedra::IOError& e) {
+      file_error(e.what());
+    } catch (const phedra::Error& e) {
+      error(e.what());
+    }
+  });
+
+  py::class_<PyDesign>(m, "Design", "A P-hedron, tube or tube array built from a preset (phedra.load)")
+      .def_property_readonly("name", &PyDesign::name)
+      .def_property_readonly("kind", &PyDesign::kind)
+      .def_property_readonly("t_star", &PyDesign::t_star, "The input configuration's motion parameter t*")
+      .def_property_readonly("flexion_interval", &PyDesign::flexion_interval, "(t_lambda, t_mu)")
+      .def_property_readonly("faces", &PyDesign::faces, "The quads, an (F, 4) array of vertex indices, as every export numbers them")
+      .def_property_readonly("labels", &PyDesign::labels, "Each vertex's [i, c] (or [member, i, c] in an array)")
+      .def_property_readonly("preset", [](const PyDesign& d) { return to_python(d.preset()); }, "The preset (a dict)")
+      .def("info", &PyDesign::info, "Name, kind, t*, the flexion interval, counts and the model size (a dict)")
+      .def("evaluate", &PyDesign::evaluate, py::arg("t"),
+           "The vertices at t, a (V, 3) array (phedra sample --t); InputError outside the flexion interval")
+      .def("sample", &PyDesign::sample, py::arg("ts"), "The vertices at each t, a (k, V, 3) array")
+      .def("check", &PyDesign::check, py::arg("samples") = 200, py::arg("tolerance") = 1e-9,
+           "Planarity, isometry and closure over the flexion interval (phedra check's geometry, a dict)")
+      .def("buildability", &PyDesign::buildability, py::arg("max_growth") = 10.0, py::arg("max_panel_ratio") = 100.0,
+           "Whether it can be built and over which part of the motion (phedra check --json's buildability)")
+      .def("metrics", &PyDesign::metrics, py::arg("samples") = 101,
+           "Metamaterial figures against t (phedra metrics --json)")
+      .def("repair", &PyDesign::repair, py::arg("vary") = "apex_heights,directions", py::arg("require") = 1.0,
+           py::arg("objective") = "distance", py::arg("max_seconds") = 60.0,
+           "The nearest buildable design: (Design or None, result dict) as phedra repair")
+      .def("export", &PyDesign::export_to, py::arg("path"), py::arg("count") = 41, py::arg("t") = py::none(),
+           "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, default t*)")
+      .def("__repr__", [](const PyDesign& d) {
+        return "<phedra.Design '" + d.name() + "': " + d.kind() + ", " + std::to_string(d.vertex_count()) + " vertices>";
+      });
+  m.def("load", &load, py::arg("preset"), "A design from a preset: a path, a dict, or JSON text");
+}

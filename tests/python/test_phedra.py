@@ -1,0 +1,147 @@
+"""phedra from Python (issue 26): the module against the command it mirrors.
+Run by the README's test command (ctest: python_module), or
+    PYTHONPATH=build/python PHEDRA=build/bin/phedra python3 -m pytest tests/python
+"""
+import json
+import os
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import phedra
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+PHEDRA = os.environ.get("PHEDRA", os.path.join(ROOT, "build", "bin", "phedra"))
+PRESETS = ["default.json", "parallelogram-tube.json", "grid-3x3.json", "edge-sharing-pair.json", "all-minus.json"]
+
+
+def preset(name):
+    return os.path.join(ROOT, "presets", name)
+
+
+def cli(*args):
+    return subprocess.run([PHEDRA, *args], capture_output=True, text=True, check=False)
+
+
+@pytest.mark.parametrize("name", PRESETS)
+def test_evaluate_equals_phedra_sample(name):
+    d = phedra.load(preset(name))
+    lo, hi = d.flexion_interval
+    ts = [lo, d.t_star, lo + 0.37 * (hi - lo), hi]
+    run = cli("sample", preset(name), *sum((["--t", repr(t)] for t in ts), []), "--full-precision")
+    assert run.returncode == 0, run.stderr
+    doc = json.loads(run.stdout)
+    size = d.info()["model_size"]
+    for t, s in zip(ts, doc["samples"]):
+        x = d.evaluate(t)
+        assert x.shape == (len(doc["labels"]), 3) and x.dtype == np.float64
+        assert np.max(np.abs(x - np.asarray(s["vertices"]))) <= 1e-12 * size
+    assert np.array_equal(d.faces, np.asarray(doc["faces"]))
+    assert [list(l) for l in d.labels] == doc["labels"]
+    k = d.sample(ts)
+    assert k.shape == (len(ts), len(doc["labels"]), 3)
+    assert np.array_equal(k[1], d.evaluate(d.t_star))
+
+
+def test_evaluate_owns_its_array_and_many_calls_agree():
+    d = phedra.load(preset("default.json"))
+    a = d.evaluate(0.3)
+    b = d.evaluate(0.3)
+    a[0, 0] = 1e9  # a copy of its own: changing one leaves the other
+    assert b[0, 0] != 1e9
+    assert np.isfinite(b).all()
+
+
+def test_load_from_dict_and_json_text_equals_file():
+    with open(preset("grid-3x3.json")) as f:
+        text = f.read()
+    a, b, c = phedra.load(preset("grid-3x3.json")), phedra.load(json.loads(text)), phedra.load(text)
+    assert np.array_equal(a.evaluate(a.t_star), b.evaluate(b.t_star))
+    assert np.array_equal(a.evaluate(a.t_star), c.evaluate(c.t_star))
+    assert a.info()["kind"] == c.info()["kind"] and "grid" in a.info()["kind"]
+    assert a.info()["source"].endswith("grid-3x3.json") and b.info()["source"] == "a dict"
+
+
+def test_reports_match_the_command():
+    for name in ["default.json", "grid-3x3.json"]:
+        d = phedra.load(preset(name))
+        check = json.loads(cli("check", preset(name), "--json").stdout)
+        b = d.buildability()
+        assert b["summary"] == check["buildability"]["summary"]
+        assert b["buildable"] is True
+        geometry = d.check()
+        assert geometry["passed"] is True and geometry["passed"] == check["geometry_passed"]
+        assert geometry["isometry"] == check["isometry"] and geometry["planarity"] == check["planarity"]
+        m = d.metrics(samples=11)
+        metrics = json.loads(cli("metrics", preset(name), "--samples", "11", "--json").stdout)
+        for key, value in metrics["at_t_star"]["poisson"].items():
+            assert m["at_t_star"]["poisson"][key] == pytest.approx(value, rel=1e-12)
+        assert m["at_t_star"]["extent"] == pytest.approx(metrics["at_t_star"]["extent"], rel=1e-12)
+        assert len(m["samples"]) == len(metrics["samples"])
+    partly = phedra.load(os.path.join(ROOT, "tests", "data", "partly-buildable.json"))
+    assert partly.buildability()["buildable"] is False
+    oversized = phedra.load(os.path.join(ROOT, "tests", "data", "oversized-panels.json"))
+    assert oversized.buildability()["oversized"] == 3
+    assert oversized.buildability(max_panel_ratio=0)["sliver"] == 3
+
+
+def test_errors_name_the_field_like_the_command():
+    d = phedra.load(preset("default.json"))
+    with pytest.raises(phedra.InputError) as e:
+        d.evaluate(100.0)
+    assert e.value.field == "t" and "outside the flexion interval" in str(e.value)
+    with pytest.raises(phedra.FileError) as f:
+        phedra.load(os.path.join(ROOT, "no-such-preset.json"))
+    assert "cannot open" in str(f.value)
+    bad = os.path.join(ROOT, "tests", "data", "bad", "apexes-consecutive-equal.json")
+    run = cli("info", bad)
+    with pytest.raises(phedra.InputError) as g:
+        phedra.load(bad)
+    assert run.returncode == 2 and str(g.value) in run.stderr
+    with pytest.raises(phedra.InputError):
+        phedra.load("{ not json")
+    assert issubclass(phedra.InputError, phedra.Error) and issubclass(phedra.FileError, phedra.Error)
+
+
+def test_repair_gives_a_buildable_design(tmp_path):
+    d = phedra.load(os.path.join(ROOT, "tests", "data", "repairable-tube.json"))
+    assert d.buildability()["buildable"] is False
+    repaired, result = d.repair(max_seconds=30)
+    assert result["found"] and repaired is not None
+    assert repaired.buildability()["buildable"] is True
+    assert result["changes"] and result["nearest_changes"] == len(result["changes"])
+    with pytest.raises(phedra.InputError):
+        d.repair(vary="heights")
+    # Written and checked by the command, not trusted.
+    out = tmp_path / "repaired.json"
+    out.write_text(json.dumps(repaired.preset))
+    assert cli("check", str(out)).returncode == 0
+
+
+def test_export_writes_what_the_command_writes(tmp_path):
+    d = phedra.load(preset("parallelogram-tube.json"))
+    for ext in ["glb", "gltf", "fold", "json", "obj", "ply"]:
+        path = tmp_path / f"tube.{ext}"
+        d.export(str(path))
+        assert path.stat().st_size > 0
+    with open(tmp_path / "tube.json") as f:
+        doc = json.load(f)
+    assert len(doc["samples"]) == 41
+    assert np.max(np.abs(np.asarray(doc["samples"][0]["vertices"]) - d.evaluate(d.flexion_interval[0]))) < 1e-12 * d.info()["model_size"]
+    with pytest.raises(phedra.InputError) as e:
+        d.export(str(tmp_path / "tube.stl"))
+    assert e.value.field == "path"
+    assert not (tmp_path / "tube.stl").exists()
+
+
+def test_the_example_sweeps_and_plots(tmp_path):
+    out = tmp_path / "nu12.png"
+    env = dict(os.environ, MPLBACKEND="Agg")
+    run = subprocess.run([sys.executable, os.path.join(ROOT, "examples", "sweep_apex_height.py"), "--steps", "5", "-o", str(out)],
+                         capture_output=True, text=True, env=env, check=False)
+    assert run.returncode == 0, run.stderr
+    assert "nu_12 = " in run.stdout and out.stat().st_size > 1000
+    with open(out, "rb") as f:
+        assert f.read(8) == b"\x89PNG\r\n\x1a\n"
