@@ -5,13 +5,17 @@
 // (tests/js/designer_state_test.mjs).
 
 /// The designer's numbers: 4 decimals (t, heights and the limits line up), or 3
-/// significant digits in exponent form when tiny.
+/// significant digits in exponent form when tiny or huge (an oversized panel's
+/// 1.398e+08 stays readable, not 139800000.0000).
 export const decimals4 = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
-  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : x.toFixed(4));
+  : (Math.abs(x) < 1e-3 && x !== 0) || Math.abs(x) >= 1e6 ? x.toExponential(2) : x.toFixed(4));
 
 /// The viewer's numbers: 4 significant digits (no 16-digit noise on screen).
 export const significant4 = (x) => (x === undefined || x === null || !Number.isFinite(x) ? '–'
-  : Math.abs(x) < 1e-3 && x !== 0 ? x.toExponential(2) : Number(x.toPrecision(4)).toString());
+  : (Math.abs(x) < 1e-3 && x !== 0) || Math.abs(x) >= 1e6 ? x.toExponential(2) : Number(x.toPrecision(4)).toString());
+
+/// "a bow-tie", "an oversized panel": the article a shape's name takes.
+export const withArticle = (word) => `${/^[aeiou]/i.test(String(word)) ? 'an' : 'a'} ${word}`;
 
 // A decimal number in running text: not part of a name ("S_3", "trajectory[2][2]" are
 // integers and stay), with an optional exponent; not a percentage (those keep

@@ -313,12 +313,27 @@ std::string pointer_field(const nlohmann::json::json_pointer& pointer) {
   return out;
 }
 
-bool all_panels_simple(const Design& design) {
+bool all_panels_simple(const Design& design, const SizeBounds& bounds) {
   const Assembly& a = design.assembly;
+  std::vector<double> longest;
+  std::vector<double> aspects;
   for (std::size_t m = 0; m < a.member_count(); ++m) {
     for (std::size_t f = 0; f < a.topology(m).face_count(); ++f) {
-      if (!(shape_margin(panel_nets(a, m, f)) > 0.0)) return false;
+      const PanelNets nets = panel_nets(a, m, f);
+      if (!(shape_margin(nets) > 0.0)) return false;
+      const double e2 = longest_edge_squared(nets.general);
+      longest.push_back(std::sqrt(e2));
+      aspects.push_back(e2 > 0.0 ? quad_area(nets.general) / e2 : 0.0);
     }
+  }
+  if (bounds.min_aspect > 0.0 && std::any_of(aspects.begin(), aspects.end(), [&](double s) { return s < bounds.min_aspect; })) {
+    return false;
+  }
+  if (bounds.max_edge_ratio > 0.0 && !longest.empty()) {
+    std::vector<double> sorted = longest;
+    std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+    const double limit = bounds.max_edge_ratio * sorted[sorted.size() / 2];
+    if (std::any_of(longest.begin(), longest.end(), [&](double e) { return e > limit; })) return false;
   }
   return true;
 }

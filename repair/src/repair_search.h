@@ -110,7 +110,8 @@ std::optional<std::vector<double>> scatter_search(const DesignVariables& variabl
 /// A JSON pointer as the field users read: "/tube/apex_heights/3" -> "tube.apex_heights[3]".
 std::string pointer_field(const nlohmann::json::json_pointer& pointer);
 
-/// Every panel a simple quad (MATH.md section 9).
-bool all_panels_simple(const Design& design);
+/// Every panel a simple quad (MATH.md section 9) within the size bounds (not
+/// oversized, not a sliver: panel_size.h); cheap, no collision test.
+bool all_panels_simple(const Design& design, const SizeBounds& bounds = {});
 
 }  // namespace phedra::repair_search

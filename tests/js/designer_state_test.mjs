@@ -14,7 +14,7 @@ import {
 } from '../../web/designer/edits.js';
 import { presetInGlb } from '../../web/designer/files.js';
 import { foldAnglePlot, niceAxis } from '../../web/plot.js';
-import { canonicalPreset, decimals4, pageTitle, significant4, statusSummary, withNumbers } from '../../web/text.js';
+import { canonicalPreset, decimals4, pageTitle, significant4, statusSummary, withArticle, withNumbers } from '../../web/text.js';
 
 const failures = [];
 let checks = 0;
@@ -363,6 +363,9 @@ section('the fields a cause names', () => {
 section('one number format a page', () => {
   equal([decimals4(1), decimals4(-1.038229), decimals4(6.75e-16), decimals4(0)], ['1.0000', '-1.0382', '6.75e-16', '0.0000'], 'the designer');
   equal([significant4(-2), significant4(-2.1908197), significant4(9.49e-4), significant4(1347.34)], ['-2', '-2.191', '9.49e-4', '1347'], 'the viewer');
+  equal(withNumbers('its transversal edge V_{7,2} V_{8,2} is 1.398e+08 long, 8.477e+07 times the median panel', decimals4),
+    'its transversal edge V_{7,2} V_{8,2} is 1.40e+8 long, 8.48e+7 times the median panel', 'an oversized panel\'s numbers stay readable');
+  equal([withArticle('bow-tie'), withArticle('oversized'), withArticle('sliver')], ['a bow-tie', 'an oversized', 'a sliver'], 'a shape with its article');
   equal(withNumbers('S_3 (2.2) in profiles 0 and 1 (ratios -0.11111, -0.4655); trajectory[2][2] (now 0.1444)', decimals4),
     'S_3 (2.2000) in profiles 0 and 1 (ratios -0.1111, -0.4655); trajectory[2][2] (now 0.1444)', 'numbers in a text, names kept');
   equal(statusSummary('buildable over the whole flexion interval [-2.19082, -1.06203]', significant4), 'buildable over the whole flexion interval',

@@ -19,7 +19,10 @@ export function createFraming({ renderer, scene, camera, controls, state, design
   let glide = null;    // the camera's move under way: {from, to, start}
 
   /// The handles' positions (the design's input: always finite, unlike a vertex
-  /// that passes near infinity next to a flexion limit).
+  /// that passes near infinity next to a flexion limit), less the ones far out
+  /// (beyond 20 times the median distance from their median point: an apex where
+  /// two nearly parallel lines meet, next to an oversized panel, would make the
+  /// design a speck).
   function handlePoints() {
     const points = [], m = new THREE.Matrix4();
     for (const mesh of handles.meshes()) {
@@ -28,20 +31,33 @@ export function createFraming({ renderer, scene, camera, controls, state, design
         points.push(new THREE.Vector3().setFromMatrixPosition(m));
       }
     }
-    return points;
+    return withoutFarOnes(points);
+  }
+
+  /// The points less those beyond 20 times the median distance from their median
+  /// point: an apex or a vertex where two nearly parallel lines meet (an
+  /// oversized panel, 1e8 units long) would make the design a speck.
+  function withoutFarOnes(points) {
+    if (points.length < 3) return points;
+    const median = (values) => values.slice().sort((a, b) => a - b)[Math.floor(values.length / 2)];
+    const centre = new THREE.Vector3(median(points.map((p) => p.x)), median(points.map((p) => p.y)), median(points.map((p) => p.z)));
+    const reach = 20 * median(points.map((p) => p.distanceTo(centre)));
+    return reach > 0 ? points.filter((p) => p.distanceTo(centre) <= reach) : points;
   }
 
   /// Everything the design shows over its whole motion (the surface at 9 t across
   /// the flexion interval), or at the slider's t only (`motion` false), and the
   /// handles; not out to where a vertex passes near infinity (within twice the
-  /// size of the handles and the shown surface around them).
+  /// size of the handles and the shown surface around them), nor to the far
+  /// vertices of oversized panels (withoutFarOnes).
   function designBox(motion = true) {
-    const v = new THREE.Vector3();
     const surfaceAt = (fractions, box) => {
       for (const f of fractions) {
         const x = designer.evaluate(state.tOf(f));
         if (x.ok === false) continue;
-        for (let i = 0; i + 2 < x.length; i += 3) box.expandByPoint(v.set(x[i], x[i + 1], x[i + 2]));
+        const points = [];
+        for (let i = 0; i + 2 < x.length; i += 3) points.push(new THREE.Vector3(x[i], x[i + 1], x[i + 2]));
+        for (const p of withoutFarOnes(points)) box.expandByPoint(p);
       }
       return box;
     };

@@ -5,7 +5,7 @@
 // DesignState; the only edit it makes itself is a sign toggle, which it hands
 // to `onSign`. What varies in length (status, causes, results, figures) lives
 // in #status-box, of a fixed height: the buttons never move.
-import { pageTitle, statusSummary, withNumbers } from '../text.js';
+import { pageTitle, statusSummary, withArticle, withNumbers } from '../text.js';
 import { fieldsInHint, modeOf } from './edits.js';
 import { $, format } from './util.js';
 
@@ -164,7 +164,9 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     list.textContent = '';
     const invalid = b ? b.invalid : [];
     why.hidden = invalid.length === 0;
-    $('why-count').textContent = `${invalid.length} panel${invalid.length === 1 ? '' : 's'} cannot be cut as one plate; ` +
+    const sized = invalid.some((p) => p.shape === 'oversized' || p.shape === 'sliver');
+    $('why-count').textContent = `${invalid.length} panel${invalid.length === 1 ? '' : 's'} cannot be ` +
+      `${sized ? 'built' : 'cut as one plate'}; ` +
       'what to change (click one: its handle and panel light up):';
     for (const p of invalid.slice(0, 12)) list.append(causeItem(p));
     if (invalid.length > 12) {
@@ -200,7 +202,7 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     const name = document.createElement('span');
     name.className = 'panel-name';
     name.textContent = `panel ${p.panel}`;
-    summary.append(p.hints.length ? 'mends ' : 'no single number mends ', name, `, a ${p.shape}: details`);
+    summary.append(p.hints.length ? 'mends ' : 'no single number mends ', name, `, ${withArticle(p.shape)}: details`);
     details.append(summary, `${p.cause ? `${p.cause}: ` : ''}${withNumbers(p.why, format)}`);
     item.append(details);
     item.title = firstField ? `select the handle of ${firstField} and panel ${p.panel}` : `show panel ${p.panel}`;
