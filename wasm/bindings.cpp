@@ -298,7 +298,8 @@ class Designer {
   /// and field hints for the first `hinted` invalid panels.
   /// {ok, buildable, summary, panels, bow_tie, degenerate, shape_margin,
   /// self_crossing, swept, interval: [a, b] or null, t_lambda, t_mu,
-  /// invalid: [{panel, shape, cause, why, hints: [text]}]}.
+  /// invalid: [{panel, shape, cause, why, hints: [text]}],
+  /// ends: [{side: "below" | "above", t, text, panels: [a, b]}]}.
   val buildability(bool sweep, int samples, int hinted) {
     if (!design_) return failure("", "no design loaded");
     try {
@@ -344,6 +345,24 @@ class Designer {
         invalid.call<void>("push", p);
       }
       v.set("invalid", invalid);
+      // What ends the buildable part on each side (a collision, a hinge folded
+      // through, the growth bound): the command's words and the panels.
+      val ends = val::array();
+      if (r.swept && !r.motion.at_t_star) {
+        for (const auto& [side, hit] : {std::pair{"below", r.motion.lower}, std::pair{"above", r.motion.upper}}) {
+          if (!hit) continue;
+          val e = val::object();
+          e.set("side", std::string(side));
+          e.set("t", hit->t);
+          e.set("text", describe(*hit, r.members > 1));
+          val panels = val::array();
+          panels.call<void>("push", static_cast<double>(hit->a.face));
+          panels.call<void>("push", static_cast<double>(hit->b.face));
+          e.set("panels", panels);
+          ends.call<void>("push", e);
+        }
+      }
+      v.set("ends", ends);
       return v;
     } catch (const Error& e) {
       return failure("", e.what());

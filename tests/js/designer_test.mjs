@@ -104,6 +104,9 @@ try {
     check(bar && Math.abs(bar[0] - from) < 0.5 && Math.abs(bar[0] + bar[1] - to) < 0.5 && to < 60,
       `partly buildable bar ${bar}, expected ${from}% to ${to}%`);
     check((await status()).includes('only ('), `partly buildable: "${await status()}"`);
+    const ends = await api(() => window.phedraDesigner.whyText());
+    check(/above t = 0\.31\d\d: the hinge between panel \d+ .* folds shut and through/.test(ends),
+      `what ends the buildable part: "${ends.slice(0, 300)}"`);
     await api((t) => window.phedraDesigner.setT(t), cli.buildable_interval[1] + 0.8 * (b.t_mu - cli.buildable_interval[1]));
     await page.waitForTimeout(400);
     const orange = await api(() => window.phedraDesigner.collidingPanels());

@@ -163,7 +163,14 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     const why = $('why'), list = $('why-list');
     list.textContent = '';
     const invalid = b ? b.invalid : [];
-    why.hidden = invalid.length === 0;
+    const ends = b && b.ends ? b.ends : [];
+    why.hidden = invalid.length === 0 && ends.length === 0;
+    if (invalid.length === 0 && ends.length) {
+      // Simple panels, a part of the motion: say what ends it, as the command does.
+      $('why-count').textContent = 'what ends the buildable part (click one: its panels light up):';
+      for (const e of ends) list.append(endItem(e));
+      return;
+    }
     const sized = invalid.some((p) => p.shape === 'oversized' || p.shape === 'sliver');
     $('why-count').textContent = `${invalid.length} panel${invalid.length === 1 ? '' : 's'} cannot be ` +
       `${sized ? 'built' : 'cut as one plate'}; ` +
@@ -174,6 +181,16 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
       more.textContent = `… and ${invalid.length - 12} more (phedra check --json lists them all)`;
       list.append(more);
     }
+  }
+
+  /// What ends the buildable part on one side: "above t = 0.3133: the hinge between ...".
+  function endItem(e) {
+    const item = document.createElement('li');
+    item.dataset.panel = String(e.panels[0]);
+    item.textContent = `${e.side} t = ${format(e.t)}: ${withNumbers(e.text, format)}`;
+    item.title = `show panels ${e.panels.join(' and ')}`;
+    item.addEventListener('click', () => pick(item, null, { panel: e.panels[0], field: null }));
+    return item;
   }
 
   /// One cause, for a maker first: what to change (each change a link to its
