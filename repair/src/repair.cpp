@@ -373,7 +373,28 @@ RepairResult fewest_fields(const json& preset, const RepairOptions& options, Rep
 }  // namespace
 
 RepairResult repair(const json& preset, const RepairOptions& options) {
-  const RepairResult nearest = nearest_design(preset, options);
+  RepairResult nearest = nearest_design(preset, options);
+  // Nothing found and time left: the searches again from other random starts
+  // (the perturbed restarts and the scattered designs draw from the seed).
+  for (unsigned retry = 1; retry <= options.retries && !nearest.found && !nearest.already_buildable &&
+                           nearest.before.self_crossing_members.empty() && options.max_seconds - nearest.seconds > 1.0;
+       ++retry) {
+    RepairOptions again = options;
+    again.seed = options.seed + retry;
+    again.max_seconds = options.max_seconds - nearest.seconds;
+    RepairResult r = nearest_design(preset, again);
+    r.seconds += nearest.seconds;
+    r.evaluations += nearest.evaluations;
+    r.starts += nearest.starts;
+    if (r.found) {
+      r.notes.push_back("found from other random starts (search " + std::to_string(retry + 1) + ")");
+      nearest = std::move(r);
+    } else {
+      nearest.seconds = r.seconds;
+      nearest.evaluations = r.evaluations;
+      nearest.starts = r.starts;
+    }
+  }
   if (options.objective == RepairObjective::fields) return fewest_fields(preset, options, nearest);
   RepairResult r = nearest;
   r.nearest_changes = r.changes.size();

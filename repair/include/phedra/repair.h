@@ -55,6 +55,9 @@ struct RepairOptions {
   /// them: search again with the trajectory varied too (60 % of the time for the
   /// first search then), and say so (RepairResult::escalated, a note).
   bool escalate = true;
+  /// When nothing is found and time is left: this many more searches from other
+  /// random starts (seed + 1, seed + 2, ...), each with the time left.
+  unsigned retries = 2;
   /// fields: after the nearest design, the same requirement met varying only the
   /// largest 1, 2, 4, ... of its changes (a search each, all other fields held),
   /// the first that succeeds kept; up to max_seconds more.
