@@ -13,7 +13,7 @@ bash scripts/setup.sh >/dev/null
 bash scripts/configure-sanitize.sh
 cmake --build build-sanitize --target phedra_fuzz_design --parallel "$(nproc)"
 mkdir -p build-sanitize/corpus
-cp -n presets/*.json presets/developed/*.json tests/data/developed-no-flex.json tests/data/bad/*.json tests/data/cases/*.json build-sanitize/corpus/ 2>/dev/null || true
+cp -n presets/*.json presets/developed/*.json tests/data/developed-no-flex.json tests/data/zero-volume-at-t-star.json tests/data/bad/*.json tests/data/cases/*.json build-sanitize/corpus/ 2>/dev/null || true
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1

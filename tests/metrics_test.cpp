@@ -244,5 +244,15 @@ TEST_CASE("metrics plots: axes with units and round ticks, the interval's share,
   REQUIRE(phedra_cli({"metrics", presets + "/parallelogram-tube.json", "-o", (dir / "t.svg").string()}).code == 0);
   const std::string tube = read(dir / "t.svg");
   if (tube.find("class=\"clipped\"") == std::string::npos) CHECK(texts_of_class(tube, "clip-note").empty());
+  // A volume of 0 at t* (found by the fuzzer): no ratio to it, and no NaN anywhere in the files.
+  const std::string zero = std::string(PHEDRA_TEST_DATA_DIR) + "/zero-volume-at-t-star.json";
+  REQUIRE(phedra_cli({"metrics", zero, "-o", (dir / "z.svg").string(), "-o", (dir / "z.csv").string(), "-o", (dir / "z.json").string()}).code == 0);
+  for (const char* file : {"z.svg", "z.csv", "z.json"}) {
+    const std::string text = read(dir / file);
+    CAPTURE(file);
+    CHECK(text.find("nan") == std::string::npos);
+    CHECK(text.find("inf") == std::string::npos);
+  }
+  CHECK(read(dir / "z.svg").find("V / V(t*)") == std::string::npos);
   fs::remove_all(dir);
 }

@@ -133,6 +133,9 @@ std::string escape(const std::string& text) {
 /// axes, t's unit below, the share of the flexion interval above, t* marked,
 /// the parts of the motion that are not buildable shaded. With `clip`, values
 /// beyond +-clip are drawn at the edge with a marker and the axis stops there.
+/// A plotted value, or none when it is not a number (a ratio to a zero).
+std::optional<double> finite_or_none(double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; }
+
 void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, double w, double h,
           const std::string& title, const std::string& y_label, const Series& series, std::optional<double> clip) {
   static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
@@ -366,13 +369,14 @@ std::string MetricsReport::to_svg() const {
     ratios[k].first = extent_names[k];
     poisson[k].first = poisson_names[k];
     for (const MetricsSample& s : samples) {
-      ratios[k].second.push_back(s.extent[k] / at_t_star.extent[k]);
-      poisson[k].second.push_back(s.poisson[k]);
+      ratios[k].second.push_back(finite_or_none(s.extent[k] / at_t_star.extent[k]));
+      poisson[k].second.push_back(s.poisson[k] ? finite_or_none(*s.poisson[k]) : std::nullopt);
     }
   }
-  if (at_t_star.volume) {
+  // A volume of 0 at t* (a tube folded flat there) has no ratio: left out, never NaN in the file.
+  if (at_t_star.volume && *at_t_star.volume != 0.0 && std::isfinite(*at_t_star.volume)) {
     ratios.push_back({"V / V(t*)", {}});
-    for (const MetricsSample& s : samples) ratios.back().second.push_back(*s.volume / *at_t_star.volume);
+    for (const MetricsSample& s : samples) ratios.back().second.push_back(finite_or_none(*s.volume / *at_t_star.volume));
   }
   plot(svg, *this, 90, 90, 560, 220, "Extents along the principal directions and enclosed volume",
        "ratio to the value at t* (dimensionless)", ratios, std::nullopt);

@@ -35,6 +35,7 @@ std::string tick_label(double value, double step) {
 
 Ticks round_ticks(double lo, double hi, int target) {
   Ticks t;
+  if (!std::isfinite(lo) || !std::isfinite(hi)) lo = 0.0, hi = 1.0;  // never a NaN tick (or a cast of one)
   if (!(hi > lo)) hi = lo + 1.0;
   t.step = round_step(hi - lo, target);
   const long first = static_cast<long>(std::ceil(lo / t.step - 1e-9)), last = static_cast<long>(std::floor(hi / t.step + 1e-9));
@@ -46,6 +47,7 @@ Ticks round_ticks(double lo, double hi, int target) {
 }
 
 std::pair<double, double> round_range(double lo, double hi, int target) {
+  if (!std::isfinite(lo) || !std::isfinite(hi)) lo = 0.0, hi = 1.0;
   if (!(hi > lo)) lo -= 0.5, hi += 0.5;
   const double step = round_step(hi - lo, target);
   return {std::floor(lo / step + 1e-9) * step, std::ceil(hi / step - 1e-9) * step};
