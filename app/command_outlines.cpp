@@ -106,12 +106,25 @@ void add_outlines_command(CLI::App& app, Context& context) {
                   << " mm high (panels too small for it); a larger --scale or --model-size makes every label "
                   << "larger\n";
     }
-    if (!buildability.panels_simple()) {
-      context.err << "phedra: warning: " << buildability.invalid.size() << " of " << buildability.panels
-                  << " panels cannot be " << (buildability.count(PanelShape::oversized) + buildability.count(PanelShape::sliver) ? "built" : "cut as one plate")
-                  << " (filled red on the sheets): panels "
-                  << buildability.invalid_list() << "; `phedra check " << o->preset
-                  << "` names the cause of each and the field to change\n";
+    // Oversized panels and slivers are left off the sheets; bow-ties and degenerate ones are on them, red.
+    std::vector<std::size_t> red;
+    for (const PanelDiagnosis& d : buildability.invalid) {
+      if (d.shape != PanelShape::oversized && d.shape != PanelShape::sliver) red.push_back(d.panel);
+    }
+    auto list = [](const std::vector<std::size_t>& panels) {
+      std::string text;
+      for (std::size_t k = 0; k < panels.size(); ++k) text += (k ? ", " : "") + std::to_string(panels[k]);
+      return text;
+    };
+    if (!sheets.left_out.empty()) {
+      context.err << "phedra: warning: panel" << (sheets.left_out.size() == 1 ? " " : "s ") << list(sheets.left_out)
+                  << " left off the sheets: oversized or slivers, nothing one can cut (the scale is set by the other "
+                  << "panels); `phedra check " << o->preset << "` names the cause of each and the field to change\n";
+    }
+    if (!red.empty()) {
+      context.err << "phedra: warning: " << red.size() << " of " << buildability.panels
+                  << " panels cannot be cut as one plate (filled red on the sheets): panels " << list(red) << "; `phedra check "
+                  << o->preset << "` names the cause of each and the field to change\n";
     }
     context.out << "buildability: " << buildability.summary() << '\n';
   });

@@ -379,3 +379,23 @@ TEST_CASE("cut-sheet geometry: overlaps, boxes inside polygons, smallest boxes",
   const Box2 box = minimum_box({{0, 0}, {3, 3}, {2.5, 3.5}, {-0.5, 0.5}});
   CHECK(box.width * box.height == Approx(3.0 * std::sqrt(2.0) * std::sqrt(0.5)).epsilon(1e-9));
 }
+
+TEST_CASE("cut sheets leave oversized panels off and scale by the others", "[outlines]") {
+  // Three panels 1.4e8 long (tests/data/oversized-panels.json): on the sheets they
+  // would set the scale (50 mm = 4e7 model units) and every other piece would be a speck.
+  const Design d = load_design(phedra::test::data + "/oversized-panels.json");
+  const CutSheets s = cut_sheets(d, {});
+  CHECK(s.left_out == std::vector<std::size_t>{51, 52, 53});
+  for (const Piece& piece : s.pieces) {
+    for (const PiecePanel& p : piece.panels) CHECK((p.panel < 51 || p.panel > 53));
+  }
+  CHECK(s.scale > 1.0);  // mm per model unit: the other panels are about 10 units
+  CHECK(s.pages.size() == 1);
+  const Run r = phedra_cli({"outlines", phedra::test::data + "/oversized-panels.json", "-o",
+                            (std::filesystem::temp_directory_path() / ("over-" + std::to_string(::getpid()) + ".svg")).string()});
+  CHECK(r.code == 0);
+  CHECK_THAT(r.err, Contains("panels 51, 52, 53 left off the sheets: oversized or slivers"));
+  CHECK(r.err.find("filled red") == std::string::npos);
+  // A shipped preset has none left out.
+  CHECK(cut_sheets(load_design(presets + "/grid-3x3.json"), {}).left_out.empty());
+}

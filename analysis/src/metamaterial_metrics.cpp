@@ -378,7 +378,12 @@ std::string MetricsReport::to_svg() const {
     ratios.push_back({"V / V(t*)", {}});
     for (const MetricsSample& s : samples) ratios.back().second.push_back(finite_or_none(*s.volume / *at_t_star.volume));
   }
-  plot(svg, *this, 90, 90, 560, 220, "Extents along the principal directions and enclosed volume",
+  // A tube with no volume at t* has no volume ratio: the title says so rather than leave the reader looking for it.
+  const bool volume_drawn = ratios.size() > 3;
+  const std::string extents_title = volume_drawn ? "Extents along the principal directions and enclosed volume"
+                                    : at_t_star.volume ? "Extents along the principal directions (enclosed volume 0 at t*: no ratio to it)"
+                                                       : "Extents along the principal directions";
+  plot(svg, *this, 90, 90, 560, 220, extents_title,
        "ratio to the value at t* (dimensionless)", ratios, std::nullopt);
   plot(svg, *this, 90, 440, 560, 220, "Effective Poisson's ratios nu_jk = -(dL_k/L_k) / (dL_j/L_j)",
        "Poisson's ratio (dimensionless)", poisson, poisson_clip);

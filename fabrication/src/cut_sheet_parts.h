@@ -8,8 +8,10 @@ namespace phedra::sheets {
 
 /// Pieces in piece coordinates (mm): unfolded, folds and seams found, tabs chosen.
 /// `fit`: the largest box (mm) a piece may grow to (either way round), tabs aside.
+/// Oversized panels and slivers (panel_size.h) are left off: their numbers go to
+/// `left_out`, and their edges carry no seam label.
 std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& options, double scale, Vec2 fit,
-                                 std::size_t& seams);
+                                 std::size_t& seams, std::vector<std::size_t>& left_out);
 
 /// Fills piece.labels: S<k> along every seam side, then P<k> inside every panel.
 void place_labels(Piece& piece);

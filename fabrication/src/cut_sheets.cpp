@@ -6,6 +6,7 @@
 #include "cut_sheet_parts.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
+#include "phedra/panel_size.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +86,7 @@ void place(Piece& piece, const Placement& at) {
 /// Title, legend, scale bar and footer of page k of n; returns the height
 /// (from the page's top) the title and legend take.
 double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat,
-                bool any_seam_on_fold) {
+                bool any_seam_on_fold, std::size_t left_out) {
   const double m = 10.0, top = s.page.y() - m, right = s.page.x() - m;
   add_text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
                      to_string(s.mode) + ")",
@@ -102,6 +103,10 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
   legend.sample("P7", TextRole::panel, s.mode == PieceMode::cells ? "panel 7 (a wall: glue its two copies face to face)"
                                                                    : "panel 7 (as numbered in the 3D files)");
   if (any_uncuttable) legend.fill(FillStyle::swatch_not_cuttable, "not one plate (see phedra check)");
+  if (left_out > 0) {
+    legend.note(std::to_string(left_out) + (left_out == 1 ? " panel is" : " panels are") +
+                " not on the sheets: oversized or slivers, nothing one can cut (see phedra check)");
+  }
   legend.note(std::string("pieces in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row"));
   // Footer: scale bar and printing note.
   add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
@@ -207,7 +212,8 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header - footer_mm};
   const double tab_room = options.tabs ? 2.0 * options.max_tab_mm : 0.0;
   const Vec2 fit(s.content.width - tab_room, s.content.height - tab_room);
-  s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams);
+  s.left_out.clear();
+  s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams, s.left_out);
   // Shelves from the top of the content area down, pages as they fill.
   const double left = s.content.origin.x(), right = left + s.content.width;
   const double bottom = s.content.origin.y(), top = bottom + s.content.height;
@@ -257,7 +263,7 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   }
   if (!std::isfinite(s.smallest_label)) s.smallest_label = 0.0;
   s.untabbed_seams = options.tabs ? s.seams - s.tabs : 0;
-  for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat, any_seam_on_fold);
+  for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat, any_seam_on_fold, s.left_out.size());
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {
       if (!l.a.allFinite() || !l.b.allFinite()) throw Error(ExitCode::internal, "a cut-sheet line is not finite");
@@ -280,19 +286,22 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
   base.name = a.name();
   base.mode = options.mode;
   base.page = options.page;
-  base.scale = options.scale ? *options.scale : options.model_mm / a.model_size();
+  // The size of the panels that go on the sheets (an oversized panel's 1e8 would make every piece a speck).
+  base.scale = options.scale ? *options.scale : options.model_mm / bounded_model_size(design);
   const double m = options.margin;
   // The header as tall as the legend needs on this page width, and a 4 mm gap:
   // first with every item (the flags are known once the pieces are), then, when
   // the items shown need fewer rows, again with the room that frees.
-  auto header_for = [&](bool uncuttable, bool flat, bool on_fold) {
+  auto header_for = [&](bool uncuttable, bool flat, bool on_fold, std::size_t left_out) {
     CutSheets probe_sheets = base;
     probe_sheets.pages.resize(1);
     SheetPage probe;
-    return decorate(probe, probe_sheets, 0, uncuttable, flat, on_fold) + 4.0 - m;
+    return decorate(probe, probe_sheets, 0, uncuttable, flat, on_fold, left_out) + 4.0 - m;
   };
-  auto flags_header = [&](const CutSheets& s) { return header_for(s.any_uncuttable, s.any_flat, s.any_seam_on_fold); };
-  const double worst = header_for(true, true, true);
+  auto flags_header = [&](const CutSheets& s) {
+    return header_for(s.any_uncuttable, s.any_flat, s.any_seam_on_fold, s.left_out.size());
+  };
+  const double worst = header_for(true, true, true, 999999);
   CutSheets first = lay_out(design, options, base, worst);
   const double tight = flags_header(first);
   if (tight < worst - 0.5) {

@@ -133,19 +133,31 @@ class Unfolder {
         cells_(options.mode == PieceMode::cells), piece_of_(mesh_.faces.size(), none),
         slot_(mesh_.faces.size(), 0), placed_(mesh_.faces.size()) {}
 
-  std::vector<Piece> run(std::size_t& seams) {
+  std::vector<Piece> run(std::size_t& seams, std::vector<std::size_t>& left_out) {
     std::vector<std::size_t> order(mesh_.faces.size());
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](std::size_t f, std::size_t g) { return line_key(f) < line_key(g); });
     for (std::size_t seed : order) {
-      if (piece_of_[seed] == none) grow(seed);
+      if (off_the_sheets(seed)) {
+        left_out.push_back(mesh_.faces[seed].panel);
+      } else if (piece_of_[seed] == none) {
+        grow(seed);
+      }
     }
+    std::sort(left_out.begin(), left_out.end());
+    left_out.erase(std::unique(left_out.begin(), left_out.end()), left_out.end());
     find_folds_and_seams(seams);
     return std::move(pieces_);
   }
 
  private:
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
+
+  /// An oversized panel or a sliver: not a part anyone cuts (a 1e8-long panel
+  /// would also set the scale of every other piece), left off the sheets.
+  bool off_the_sheets(std::size_t f) const {
+    return mesh_.faces[f].shape == PanelShape::oversized || mesh_.faces[f].shape == PanelShape::sliver;
+  }
 
   /// The order pieces are started in: strips row by row (across the members of
   /// an array), columns and cells member by member.
@@ -316,9 +328,12 @@ class Unfolder {
           const auto key = mesh_.key(face, k, cells_);
           const auto& sides = mesh_.edges.at(key);
           const std::size_t f = face_of(piece.panels[i], p);
-          std::size_t loose = 0;  // sides of this hinge that are not fold lines
-          for (const Side& t : sides) loose += folded_.count({t.face, t.edge}) ? 0 : 1;
-          if (sides.size() < 2 || loose == 0) continue;
+          std::size_t loose = 0, on_sheets = 0;  // sides of this hinge that are not fold lines; that are on the sheets
+          for (const Side& t : sides) {
+            loose += folded_.count({t.face, t.edge}) ? 0 : 1;
+            on_sheets += off_the_sheets(t.face) ? 0 : 1;
+          }
+          if (on_sheets < 2 || loose == 0) continue;
           const bool on_fold = folded_.count({f, k}) > 0;
           // A fold line that is also a seam (a wall meets it) carries the label once, on its first panel.
           if (on_fold && labelled_folds_.count(key)) continue;
@@ -369,6 +384,7 @@ class Unfolder {
     if (face_at_.empty()) {
       face_at_.resize(pieces_.size());
       for (std::size_t f = 0; f < mesh_.faces.size(); ++f) {
+        if (piece_of_[f] == none) continue;  // left off the sheets
         auto& list = face_at_[piece_of_[f]];
         if (list.size() <= slot_[f]) list.resize(slot_[f] + 1);
         list[slot_[f]] = f;
@@ -418,8 +434,8 @@ class Unfolder {
 }  // namespace
 
 std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& options, double scale, Vec2 fit,
-                                 std::size_t& seams) {
-  std::vector<Piece> pieces = Unfolder(design, options, scale, fit).run(seams);
+                                 std::size_t& seams, std::vector<std::size_t>& left_out) {
+  std::vector<Piece> pieces = Unfolder(design, options, scale, fit).run(seams, left_out);
   for (Piece& piece : pieces) place_labels(piece);
   return pieces;
 }

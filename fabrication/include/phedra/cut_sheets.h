@@ -72,7 +72,7 @@ struct CutSheetOptions {
   bool tabs = true;
   double tab_depth = 0.12;                ///< relative to the seam's length (at most max_tab_mm)
   double max_tab_mm = 6.0;
-  std::optional<double> scale;            ///< mm per model unit; unset: the model size becomes `model_mm`
+  std::optional<double> scale;            ///< mm per model unit; unset: the model size (of the panels within the size bounds) becomes `model_mm`
   double model_mm = 200.0;
   Vec2 page = Vec2(210.0, 297.0);         ///< mm (A4 portrait)
   double margin = 10.0;                   ///< mm around the page's content
@@ -95,6 +95,8 @@ struct CutSheets {
   double smallest_label = 0.0;            ///< mm (capital height)
   /// What the legend shows besides the lines every sheet has.
   bool any_uncuttable = false, any_flat = false, any_seam_on_fold = false;
+  /// Panels left off the sheets: oversized and slivers (panel_size.h), by number.
+  std::vector<std::size_t> left_out;
 };
 
 /// Smallest readable capital height (mm) the report warns below.
