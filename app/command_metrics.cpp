@@ -25,13 +25,18 @@ struct MetricsCommandOptions {
 void add_metrics_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<MetricsCommandOptions>();
   CLI::App* sub = app.add_subcommand(
-      "metrics", "Metamaterial figures against t: extents along the principal directions, enclosed volume of every "
+      "metrics", "Metamaterial figures against t: lengths along three axes fixed at t* (homogenized stretch), enclosed volume of every "
                  "tube and of the array, deployment ratios and effective Poisson's ratios; writes CSV, JSON and an "
                  "SVG plot");
   add_preset_argument(sub, o->preset);
   sub->add_option("--samples", o->metrics.samples, "Evenly spread over [t_lambda, t_mu], limits included (t* is added)")
       ->check(CLI::Range(2, 1000000))
       ->capture_default_str();
+  sub->add_option_function<std::string>(
+         "--axes", [o](const std::string& name) { o->metrics.axes = parse_metrics_axes(name); },
+         "The three axes, fixed at t*: structural (1 along the trajectory, 2 across it where the design spreads most, "
+         "3 normal to both) or xyz (the preset's frame)")
+      ->default_str("structural");
   sub->add_option("-o,--output", o->outputs, "Write the figures: .csv (one row per t), .json or .svg (plots); repeatable")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sub->add_flag("--json", o->json, "Print the JSON on standard output instead of the summary");

@@ -1,5 +1,5 @@
-"""Sweep one apex height of the 3 x 3 grid and plot its in-plane Poisson's ratio
-nu_12 at t* against it, marking which designs can be built (docs/python.md).
+"""Sweep one apex height of the 3 x 3 grid and plot its Poisson's ratio nu_12
+(axis 2, across the tubes, against axis 1, along them) at t* against it, marking which designs can be built (docs/python.md).
 
     PYTHONPATH=build/python python3 examples/sweep_apex_height.py [-o nu12.png] [--steps N]
 

@@ -126,9 +126,10 @@ class PyDesign {
     return to_python(assess_buildability(*design_, &preset_object(preset_), options).to_json());
   }
 
-  py::object metrics(std::size_t samples) const {
+  py::object metrics(std::size_t samples, const std::string& axes) const {
     MetricsOptions options;
     options.samples = samples;
+    options.axes = parse_metrics_axes(axes);
     return to_python(metamaterial_metrics(*design_, options).to_json());
   }
 
@@ -279,7 +280,7 @@ PYBIND11_MODULE(phedra, m) {
            "Planarity, isometry and closure over the flexion interval (phedra check's geometry, a dict)")
       .def("buildability", &PyDesign::buildability, py::arg("max_growth") = 10.0, py::arg("max_panel_ratio") = 100.0,
            "Whether it can be built and over which part of the motion (phedra check --json's buildability)")
-      .def("metrics", &PyDesign::metrics, py::arg("samples") = 101,
+      .def("metrics", &PyDesign::metrics, py::arg("samples") = 101, py::arg("axes") = "structural",
            "Metamaterial figures against t (phedra metrics --json)")
       .def("repair", &PyDesign::repair, py::arg("vary") = "apex_heights,directions", py::arg("require") = 1.0,
            py::arg("objective") = "distance", py::arg("max_seconds") = 60.0,

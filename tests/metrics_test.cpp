@@ -78,6 +78,30 @@ TEST_CASE("tube volumes do not change under translation (the end profiles close 
   }
 }
 
+namespace {
+
+/// The test's own stretch along d from t* to t: the least-squares affine map of
+/// every vertex (Eigen's QR on the n x 4 system), |F d|.
+double independent_stretch(const Design& design, double t, const Vec3& d) {
+  const AssemblyConfiguration star = design.assembly.evaluate(design.assembly.t_star());
+  const AssemblyConfiguration now = design.assembly.evaluate(t);
+  std::size_t n = 0;
+  for (const Points& m : star.members) n += m.size();
+  Eigen::MatrixXd a(n, 4), b(n, 3);
+  std::size_t row = 0;
+  for (std::size_t m = 0; m < star.members.size(); ++m) {
+    for (std::size_t v = 0; v < star.members[m].size(); ++v, ++row) {
+      a.row(row) << star.members[m][v].transpose(), 1.0;
+      b.row(row) = now.members[m][v].transpose();
+    }
+  }
+  const Eigen::MatrixXd solution = a.colPivHouseholderQr().solve(b);  // 4 x 3: [F^T; b^T]
+  const Mat3 f = solution.topRows(3).transpose();
+  return (f * d).norm();
+}
+
+}  // namespace
+
 TEST_CASE("metamaterial_metrics of the shipped tubes and arrays", "[metrics]") {
   for (const char* name : {"parallelogram-tube", "grid-3x3", "row-of-cells", "merged-tube", "default"}) {
     CAPTURE(name);
@@ -87,13 +111,23 @@ TEST_CASE("metamaterial_metrics of the shipped tubes and arrays", "[metrics]") {
     CHECK(r.samples.front().t == r.t_lambda);
     CHECK(r.samples.back().t == r.t_mu);
     CHECK(r.at_t_star.t == r.t_star);
-    // Principal directions: orthonormal, largest spread first.
+    // The axes: orthonormal, right-handed, axis 1 along the trajectory (first profile to last).
     for (int a = 0; a < 3; ++a) {
       CHECK(r.directions[a].norm() == Approx(1.0));
       for (int b = a + 1; b < 3; ++b) CHECK(std::abs(r.directions[a].dot(r.directions[b])) < 1e-9);
     }
-    CHECK(r.at_t_star.extent[0] >= r.at_t_star.extent[2]);
-    for (int k = 0; k < 3; ++k) CHECK(r.extent_deployment[k] >= 1.0);
+    CHECK(r.directions[0].cross(r.directions[1]).dot(r.directions[2]) == Approx(1.0));
+    const AssemblyConfiguration star = design.assembly.evaluate(r.t_star);
+    const GridTopology& g = design.assembly.topology(0);
+    const Vec3 chord = star.members[0][g.index(g.rows() - 1, 0)] - star.members[0][g.index(0, 0)];
+    CHECK(chord.normalized().dot(r.directions[0]) > 0.5);
+    // Lengths at t* are the bounding extents then; stretch 1 there.
+    for (int k = 0; k < 3; ++k) {
+      REQUIRE(r.at_t_star.length[k]);
+      CHECK(*r.at_t_star.length[k] == Approx(r.at_t_star.bounding_extent[k]));
+      REQUIRE(r.extent_deployment[k]);
+      CHECK(*r.extent_deployment[k] >= 1.0);
+    }
     const bool tubes = design.assembly.closed(0);
     CHECK(r.at_t_star.volume.has_value() == tubes);
     if (tubes) {
@@ -102,26 +136,100 @@ TEST_CASE("metamaterial_metrics of the shipped tubes and arrays", "[metrics]") {
       for (const auto& v : r.at_t_star.member_volume) sum += v.value();
       CHECK(*r.at_t_star.volume == Approx(sum));
       CHECK(*r.volume_deployment >= 1.0);
+      CHECK(r.figure("volume_ratio") == r.volume_deployment);
     }
-    // Poisson's ratio nu_12 at t*, against differences of independently evaluated extents.
-    if (r.at_t_star.poisson[0]) {
-      const double h = 1e-4 * (r.t_mu - r.t_lambda);
-      auto extent = [&](double t, int k) {
-        const AssemblyConfiguration c = design.assembly.evaluate(t);
-        double lo = 1e300, hi = -1e300;
-        for (const Points& m : c.members) {
-          for (const Vec3& p : m) {
-            lo = std::min(lo, r.directions[k].dot(p));
-            hi = std::max(hi, r.directions[k].dot(p));
-          }
+    // Lengths against the test's own affine fit, at every fifth sample.
+    for (std::size_t s = 0; s < r.samples.size(); s += 5) {
+      for (int k = 0; k < 3; ++k) {
+        CHECK(*r.samples[s].length[k] ==
+              Approx(*r.at_t_star.length[k] * independent_stretch(design, r.samples[s].t, r.directions[k])).epsilon(1e-9));
+      }
+    }
+    // Poisson's ratios at t*, against central differences of the independent stretches.
+    const double h = 1e-5 * (r.t_mu - r.t_lambda);
+    std::array<double, 3> rate{};
+    for (int k = 0; k < 3; ++k) {
+      rate[k] = (std::log(independent_stretch(design, r.t_star + h, r.directions[k])) -
+                 std::log(independent_stretch(design, r.t_star - h, r.directions[k]))) / (2.0 * h);
+    }
+    const std::array<std::pair<int, int>, 3> pairs{{{0, 1}, {0, 2}, {1, 2}}};
+    for (int p = 0; p < 3; ++p) {
+      REQUIRE(r.at_t_star.poisson[p]);
+      CHECK(*r.at_t_star.poisson[p] == Approx(-rate[pairs[p].second] / rate[pairs[p].first]).epsilon(1e-5));
+      CHECK(r.figure(figure_names()[p]) == r.at_t_star.poisson[p]);
+    }
+    CHECK(r.figure("flexion_width") == Approx(r.t_mu - r.t_lambda));
+    CHECK_THROWS_AS(r.figure("poisson.nu_21"), InvalidInputError);
+  }
+}
+
+TEST_CASE("metrics curves are continuous and their rates agree with the lengths, on random designs", "[metrics]") {
+  std::mt19937_64 rng(26);
+  int redrawn = 0, checked = 0;
+  for (int k = 0; k < 24; ++k) {
+    test::RandomInputShape shape;
+    shape.strips = 2 + k % 5;
+    shape.profile_vertices = 3 + k % 4;
+    shape.smooth = k % 2 == 0;
+    const bool tube = k % 3 == 0;
+    const std::optional<PHedron> p = test::draw_phedron(
+        [&] {
+          ControlPolylines input = test::random_input(rng, shape);
+          if (tube) set_tube_profile(input, TubeType::parallelogram, {-1.5, 1.0, -0.5, 2.2});
+          return input;
+        },
+        redrawn);
+    REQUIRE(p);
+    const Design design = single_design(p->input());
+    for (const MetricsAxes axes : {MetricsAxes::structural, MetricsAxes::xyz}) {
+      const MetricsReport r = metamaterial_metrics(design, {.samples = 401, .axes = axes});
+      CAPTURE(k, to_string(axes));
+      const double width = r.t_mu - r.t_lambda;
+      for (int a = 0; a < 3; ++a) {
+        if (!r.at_t_star.length[a]) continue;
+        // Between samples (away from the limits, where the motion's derivative blows up):
+        // ln L changes as its rate says (trapezoid rule), so no jump and no corner.
+        for (std::size_t s = 0; s + 1 < r.samples.size(); ++s) {
+          const MetricsSample &u = r.samples[s], &v = r.samples[s + 1];
+          if (u.t < r.t_lambda + 0.05 * width || v.t > r.t_mu - 0.05 * width) continue;
+          const double dt = v.t - u.t;
+          const double change = std::log(*v.length[a] / *u.length[a]);
+          const double predicted = 0.5 * dt * (*u.strain_rate[a] + *v.strain_rate[a]);
+          const double scale = std::max(std::abs(*u.strain_rate[a]), std::abs(*v.strain_rate[a])) * dt;
+          CAPTURE(a, u.t, v.t, change, predicted);
+          CHECK(std::abs(change - predicted) <= 0.02 * scale + 1e-12);
+          ++checked;
         }
-        return hi - lo;
-      };
-      const double e1 = (extent(r.t_star + h, 0) - extent(r.t_star - h, 0)) / extent(r.t_star, 0);
-      const double e2 = (extent(r.t_star + h, 1) - extent(r.t_star - h, 1)) / extent(r.t_star, 1);
-      CHECK(*r.at_t_star.poisson[0] == Approx(-e2 / e1).epsilon(1e-3));
+      }
+      // The strain rates have no jump between samples: at each interval's midpoint
+      // (evaluated on its own) a rate is near the chord of its ends, within an eighth
+      // of the second difference on either side (neither straddles this interval, so
+      // a jump here is not excused). Poisson's ratios are their quotients (so they are
+      // continuous but at their poles, where L_j is stationary).
+      const HomogenizedStrain strain(design.assembly, axes);
+      const std::array<std::pair<int, int>, 3> pairs{{{0, 1}, {0, 2}, {1, 2}}};
+      for (std::size_t s = 2; s + 3 < r.samples.size(); s += 3) {
+        const MetricsSample &u = r.samples[s], &v = r.samples[s + 1];
+        if (u.t < r.t_lambda + 0.05 * width || v.t > r.t_mu - 0.05 * width) continue;
+        const HomogenizedStrain::State mid = strain.at(0.5 * (u.t + v.t));
+        for (int a = 0; a < 3; ++a) {
+          if (!mid.rate[a]) continue;
+          auto rate = [&](std::size_t n) { return *r.samples[n].strain_rate[a]; };
+          const double chord = 0.5 * (rate(s) + rate(s + 1)), step = std::abs(rate(s) - rate(s + 1));
+          const double bend = std::min(std::abs(rate(s - 2) - 2.0 * rate(s - 1) + rate(s)),
+                                       std::abs(rate(s + 1) - 2.0 * rate(s + 2) + rate(s + 3)));
+          CAPTURE(a, u.t, rate(s), *mid.rate[a], rate(s + 1), bend);
+          CHECK(std::abs(*mid.rate[a] - chord) <= 0.1 * step + 0.5 * bend + 1e-9 * (1.0 + std::abs(chord)));
+          ++checked;
+        }
+        for (int q = 0; q < 3; ++q) {
+          if (!u.poisson[q]) continue;
+          CHECK(*u.poisson[q] == Approx(-*u.strain_rate[pairs[q].second] / *u.strain_rate[pairs[q].first]));
+        }
+      }
     }
   }
+  CHECK(checked > 1000);
 }
 
 TEST_CASE("phedra metrics writes CSV, JSON and SVG, and a bad format writes nothing", "[metrics][cli]") {
@@ -134,12 +242,17 @@ TEST_CASE("phedra metrics writes CSV, JSON and SVG, and a bad format writes noth
   CHECK_THAT(run.out, Contains("enclosed volume at t*:"));
   CHECK_THAT(run.out, Contains("Poisson's ratios at t*:"));
   const std::string csv = read(dir / "m.csv");
-  CHECK(csv.rfind("t,extent_1,extent_2,extent_3,volume,nu_12,nu_13,nu_23,volume_member_0", 0) == 0);
+  CHECK(csv.rfind("t,length_1,length_2,length_3,bounding_extent_1,bounding_extent_2,bounding_extent_3,volume,nu_12,nu_13,"
+                  "nu_23,volume_member_0", 0) == 0);
   CHECK(std::count(csv.begin(), csv.end(), '\n') == 13);  // header, 11 samples, t*
   CHECK(csv.find("nan") == std::string::npos);
   const nlohmann::json j = nlohmann::json::parse(read(dir / "m.json"));
   CHECK(j["samples"].size() == 12);
-  CHECK(j["principal_directions"].size() == 3);
+  CHECK(j["directions"].size() == 3);
+  CHECK(j["axes"] == "structural");
+  // The figures optimize takes, by name; the text's Poisson's ratio at t* is the JSON's (and the plot's t* sample).
+  for (const std::string& name : figure_names()) CHECK(j["figures"].contains(name));
+  CHECK(j["figures"]["poisson.nu_12"] == j["at_t_star"]["poisson"]["nu_12"]);
   CHECK(j["at_t_star"]["volume"].get<double>() > 0.0);
   const std::string svg = read(dir / "m.svg");
   CHECK_THAT(svg, Contains("<svg"));

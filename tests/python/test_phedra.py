@@ -78,7 +78,7 @@ def test_reports_match_the_command():
         metrics = json.loads(cli("metrics", preset(name), "--samples", "11", "--json").stdout)
         for key, value in metrics["at_t_star"]["poisson"].items():
             assert m["at_t_star"]["poisson"][key] == pytest.approx(value, rel=1e-12)
-        assert m["at_t_star"]["extent"] == pytest.approx(metrics["at_t_star"]["extent"], rel=1e-12)
+        assert m["at_t_star"]["length"] == pytest.approx(metrics["at_t_star"]["length"], rel=1e-12)
         assert len(m["samples"]) == len(metrics["samples"])
     partly = phedra.load(os.path.join(ROOT, "tests", "data", "partly-buildable.json"))
     assert partly.buildability()["buildable"] is False

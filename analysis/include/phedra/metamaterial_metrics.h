@@ -3,16 +3,18 @@
 // the extents along the principal directions, the enclosed volume of every tube
 // and of the whole array, deployment ratios and effective Poisson's ratios.
 //
-// Principal directions: the eigenvectors of the covariance of the mesh's
-// vertices at t*, largest spread first; they stay fixed while the design folds
-// (the motion frame keeps the axis and profile plane 0 fixed). The enclosed
+// Axes and lengths (homogenized_strain.h): three axes fixed at t* (structural
+// by default: along the trajectory, across it, normal to both); the length
+// along axis k at t is its length at t* (the bounding extent then) times the
+// stretch of the best affine map from t* to t, so the curves are as smooth as
+// the motion; the bounding extents are kept as information. The enclosed
 // volume of a tube is that of its side panels closed by its first and last
 // profile (both planar: profile i lies in plane pi_i); an array's is the sum of
-// its tubes'. Poisson's ratio nu_jk = -(dL_k / L_k) / (dL_j / L_j), the
-// derivatives taken in t by central differences of the exact motion; it is
-// undefined (empty) where L_j does not change.
+// its tubes'. Poisson's ratio nu_jk = -(d ln L_k) / (d ln L_j), from the
+// derivative of the motion; undefined (empty) where L_j does not change.
 
 #include "phedra/design.h"
+#include "phedra/homogenized_strain.h"
 
 #include <nlohmann/json.hpp>
 
@@ -25,11 +27,14 @@ namespace phedra {
 
 struct MetricsOptions {
   std::size_t samples = 101;  ///< evenly spread over [t_lambda, t_mu], limits included (>= 2); t* is added
+  MetricsAxes axes = MetricsAxes::structural;
 };
 
 struct MetricsSample {
   double t = 0.0;
-  std::array<double, 3> extent{};                 ///< along the principal directions
+  std::array<std::optional<double>, 3> length;    ///< along the axes: L_k(t*) x stretch_k(t) (none: no spread)
+  std::array<double, 3> bounding_extent{};        ///< of the vertices along the axes (information: has corners)
+  std::array<std::optional<double>, 3> strain_rate;  ///< d ln(L_k) / dt
   std::optional<double> volume;                   ///< of all tubes (none for open P-hedra)
   std::vector<std::optional<double>> member_volume;  ///< per member (none for open members)
   std::array<std::optional<double>, 3> poisson;   ///< nu_12, nu_13, nu_23
@@ -38,12 +43,19 @@ struct MetricsSample {
 struct MetricsReport {
   std::string name, kind;
   double t_star = 0.0, t_lambda = 0.0, t_mu = 0.0;
-  std::array<Vec3, 3> directions;  ///< principal directions (unit, user frame)
+  MetricsAxes axes = MetricsAxes::structural;
+  std::array<Vec3, 3> directions;  ///< the axes (unit, user frame), fixed at t*
   std::vector<MetricsSample> samples;  ///< in increasing t; one of them is t*
   MetricsSample at_t_star;
-  /// Largest over smallest over the interval: extents and volume.
-  std::array<double, 3> extent_deployment{};
+  /// Largest over smallest over the sampled interval: lengths, bounding extents and volume.
+  std::array<std::optional<double>, 3> extent_deployment;
+  std::array<std::optional<double>, 3> bounding_extent_deployment;
   std::optional<double> volume_deployment;
+  double flexion_width() const { return t_mu - t_lambda; }
+
+  /// The figures by the names `phedra optimize --target` takes (figure_names()):
+  /// none where undefined.
+  std::optional<double> figure(const std::string& name) const;
   /// For the plots: the buildable part of the interval around t* (buildability.h),
   /// none when nothing is buildable; known once the command has assessed it.
   bool buildability_known = false;
@@ -62,6 +74,12 @@ struct MetricsReport {
 std::ostream& operator<<(std::ostream& out, const MetricsReport& report);
 
 MetricsReport metamaterial_metrics(const Design& design, const MetricsOptions& options = {});
+
+/// poisson.nu_12, poisson.nu_13, poisson.nu_23 (at t*), extent_deployment.0|1|2,
+/// flexion_width (t_mu - t_lambda), volume_ratio (largest / smallest enclosed volume).
+const std::vector<std::string>& figure_names();
+/// Whether the figure needs the samples over the interval (not t* alone).
+bool figure_needs_interval(const std::string& name);
 
 /// Volume enclosed by a tube member's side panels and its end profiles (0 for an open member).
 double enclosed_volume(const GridTopology& topology, const Points& positions);

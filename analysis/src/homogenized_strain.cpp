@@ -1,0 +1,152 @@
+#include "phedra/homogenized_strain.h"
+
+#include "phedra/errors.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+
+namespace phedra {
+namespace {
+
+/// The principal direction of the largest spread of `covariance` restricted to
+/// the plane normal to `normal` (unit).
+Vec3 widest_across(const Mat3& covariance, const Vec3& normal) {
+  const Mat3 p = Mat3::Identity() - normal * normal.transpose();
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(p * covariance * p);  // ascending
+  return solver.eigenvectors().col(2).normalized();
+}
+
+/// Largest component positive: the same design gives the same signs every time.
+Vec3 signed_by_largest(Vec3 v) {
+  Eigen::Index k;
+  v.cwiseAbs().maxCoeff(&k);
+  return v[k] < 0.0 ? Vec3(-v) : v;
+}
+
+}  // namespace
+
+std::string to_string(MetricsAxes axes) { return axes == MetricsAxes::xyz ? "xyz" : "structural"; }
+
+MetricsAxes parse_metrics_axes(const std::string& name) {
+  if (name == "structural") return MetricsAxes::structural;
+  if (name == "xyz") return MetricsAxes::xyz;
+  throw InvalidInputError("--axes", "unknown axes \"" + name + "\" (use structural or xyz)");
+}
+
+HomogenizedStrain::HomogenizedStrain(const Assembly& assembly, MetricsAxes axes) : assembly_(assembly) {
+  lo_ = assembly.flexion_interval().lower.t;
+  hi_ = assembly.flexion_interval().upper.t;
+  h_ = 1e-4 * (hi_ - lo_);
+  assembly.evaluate(assembly.t_star(), configuration_);
+  Vec3 mean = Vec3::Zero();
+  std::size_t count = 0;
+  for (const Points& m : configuration_.members) {
+    for (const Vec3& p : m) mean += p;
+    count += m.size();
+  }
+  mean /= static_cast<double>(count);
+  reference_.reserve(count);
+  Mat3 covariance = Mat3::Zero();
+  for (const Points& m : configuration_.members) {
+    for (const Vec3& p : m) {
+      reference_.push_back(p - mean);
+      covariance += reference_.back() * reference_.back().transpose();
+    }
+  }
+  // The pseudo-inverse: a design flat at t* has no spread across its plane.
+  const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
+  const double largest = solver.eigenvalues().maxCoeff();
+  pseudo_inverse_ = Mat3::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const double e = solver.eigenvalues()[k];
+    if (e > 1e-12 * largest) pseudo_inverse_ += solver.eigenvectors().col(k) * solver.eigenvectors().col(k).transpose() / e;
+  }
+
+  if (axes == MetricsAxes::xyz) {
+    axes_ = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  } else {
+    // Along the trajectory: each member's chord from its first profile's centroid
+    // to its last's, turned to agree with the first member's, summed.
+    Vec3 chord = Vec3::Zero(), first = Vec3::Zero();
+    for (std::size_t m = 0; m < assembly.member_count(); ++m) {
+      const GridTopology& g = assembly.topology(m);
+      const Points& x = configuration_.members[m];
+      Vec3 a = Vec3::Zero(), b = Vec3::Zero();
+      for (std::size_t c = 0; c < g.columns(); ++c) {
+        a += x[g.index(0, c)];
+        b += x[g.index(g.rows() - 1, c)];
+      }
+      Vec3 v = (b - a) / static_cast<double>(g.columns());
+      if (m == 0) first = v;
+      if (v.dot(first) < 0.0) v = -v;
+      chord += v;
+    }
+    const double size = std::sqrt(covariance.trace() / static_cast<double>(count));
+    Vec3 along;
+    if (chord.norm() > 1e-9 * size) {
+      along = chord.normalized();
+    } else {  // a closed trajectory: its largest spread instead
+      along = solver.eigenvectors().col(2).normalized();
+    }
+    const Vec3 across = signed_by_largest(widest_across(covariance, along));
+    axes_ = {along, across, along.cross(across).normalized()};
+  }
+  const double trace = covariance.trace();
+  for (int k = 0; k < 3; ++k) defined_[k] = axes_[k].dot(covariance * axes_[k]) > 1e-10 * trace;
+}
+
+void HomogenizedStrain::evaluate(double t) const { assembly_.evaluate(t, configuration_); }
+
+Mat3 HomogenizedStrain::moment(const AssemblyConfiguration& c) const {
+  Vec3 mean = Vec3::Zero();
+  for (const Points& m : c.members) {
+    for (const Vec3& p : m) mean += p;
+  }
+  mean /= static_cast<double>(reference_.size());
+  Mat3 out = Mat3::Zero();
+  std::size_t k = 0;
+  for (const Points& m : c.members) {
+    for (const Vec3& p : m) out += (p - mean) * reference_[k++].transpose();
+  }
+  return out;
+}
+
+Mat3 HomogenizedStrain::affine(double t) const {
+  evaluate(t);
+  return moment(configuration_) * pseudo_inverse_;
+}
+
+std::array<std::optional<double>, 3> HomogenizedStrain::stretch(double t) const {
+  const Mat3 f = affine(t);
+  std::array<std::optional<double>, 3> out;
+  for (int k = 0; k < 3; ++k) {
+    if (defined_[k]) out[k] = (f * axes_[k]).norm();
+  }
+  return out;
+}
+
+HomogenizedStrain::State HomogenizedStrain::at(double t) const {
+  State s;
+  // F's derivative: M is linear in the positions, so dF/dt = M(dx/dt) C^+; dx/dt
+  // by the fourth-order central difference, its stencil inside the interval.
+  const double c = std::clamp(t, std::min(lo_ + 2.0 * h_, 0.5 * (lo_ + hi_)), std::max(hi_ - 2.0 * h_, 0.5 * (lo_ + hi_)));
+  Mat3 df = Mat3::Zero();
+  if (h_ > 0.0) {
+    const std::array<std::pair<double, double>, 4> stencil{{{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}};
+    for (const auto& [offset, weight] : stencil) df += weight * affine(c + offset * h_);
+    df /= 12.0 * h_;
+  }
+  const Mat3 f = affine(t);  // last: configuration() is the one at t
+  for (int k = 0; k < 3; ++k) {
+    if (!defined_[k]) continue;
+    const Vec3 fd = f * axes_[k];
+    const double stretch = fd.norm();
+    s.stretch[k] = stretch;
+    if (stretch > 0.0) s.rate[k] = fd.dot(df * axes_[k]) / (stretch * stretch);
+  }
+  return s;
+}
+
+}  // namespace phedra
