@@ -21,6 +21,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   add_sample_command(app, context);
   add_check_command(app, context);
   add_repair_command(app, context);
+  add_optimize_command(app, context);
   add_intersections_command(app, context);
   add_metrics_command(app, context);
   add_outlines_command(app, context);

@@ -36,34 +36,6 @@ std::string group_list(const std::vector<VariableGroup>& groups) {
 
 std::string percent(double fraction) { return format_short(100.0 * fraction) + " %"; }
 
-/// `preset` written with the keys in the order the input file has them (a
-/// reference case's preset object when the file is one).
-/// A field's value for people: numbers with 6 significant digits (or --full-precision), lists in brackets.
-std::string human_value(const nlohmann::json& value) {
-  if (value.is_number()) return format_human(value.get<double>());
-  if (!value.is_array()) return value.dump();
-  std::string out = "[";
-  for (std::size_t k = 0; k < value.size(); ++k) out += (k ? ", " : "") + human_value(value[k]);
-  return out + "]";
-}
-
-std::string preset_text(const nlohmann::json& preset, const std::string& input_path) {
-  nlohmann::ordered_json document = nlohmann::ordered_json::parse(read_text_file(input_path));
-  if (document.is_object() && document.contains("preset") && !document.contains("trajectory")) {
-    document = nlohmann::ordered_json(document["preset"]);
-  }
-  nlohmann::ordered_json out = nlohmann::ordered_json::object();
-  if (document.is_object()) {
-    for (const auto& [key, value] : document.items()) {
-      if (preset.contains(key)) out[key] = nlohmann::ordered_json::parse(preset[key].dump());
-    }
-  }
-  for (const auto& [key, value] : preset.items()) {
-    if (!out.contains(key)) out[key] = nlohmann::ordered_json::parse(value.dump());
-  }
-  return out.dump(2) + "\n";
-}
-
 nlohmann::json result_json(const RepairResult& r) {
   nlohmann::json changes = nlohmann::json::array();
   for (const FieldChange& c : r.changes) {

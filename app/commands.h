@@ -27,5 +27,6 @@ void add_generate_command(CLI::App& app, Context& context);
 void add_view_command(CLI::App& app, Context& context);
 void add_bench_command(CLI::App& app, Context& context);
 void add_repair_command(CLI::App& app, Context& context);
+void add_optimize_command(CLI::App& app, Context& context);
 
 }  // namespace phedra::cli

@@ -33,4 +33,11 @@ LoadedDesign load_with_preset(Context& context, const std::string& path);
 /// is empty or "-". Refuses to overwrite `input`.
 void emit(const std::string& content, const std::string& path, const std::string& input, std::ostream& out);
 
+/// A field's value for people: numbers with 6 significant digits (or --full-precision), lists in brackets.
+std::string human_value(const nlohmann::json& value);
+
+/// `preset` as the text of a file, keys in the order the input file (at
+/// `input_path`) has them (a reference case's preset object when the file is one).
+std::string preset_text(const nlohmann::json& preset, const std::string& input_path);
+
 }  // namespace phedra::cli

@@ -9,6 +9,12 @@
 #include "phedra/number_format.h"
 #include "phedra/phedron.h"
 #include "phedra/repair.h"
+#include "phedra/optimize.h"
+#include "phedra/metamaterial_metrics.h"
+#include "phedra/design_preset.h"
+#include "phedra/files.h"
+#include "phedra/preset.h"
+#include "phedra/json_fields.h"
 
 #include <malloc.h>
 #include <sys/wait.h>
@@ -174,6 +180,7 @@ class Runner {
     closure_figure();
     gltf_figures();
     repair_figures();
+    optimize_figures();
     return report_;
   }
 
@@ -426,6 +433,29 @@ class Runner {
     repair_one("strips_" + std::to_string(strips),
                "a helical open design of " + std::to_string(strips) + " strips with a height moved too far (a column of bow-ties)",
                unbuildable_open_preset(strips), options_.quick ? std::optional<double>() : std::optional<double>(10.0));
+  }
+
+  void optimize_one(const std::string& id, const std::string& what, const nlohmann::json& preset,
+                    const std::string& target, std::optional<double> goal) {
+    announce("optimize, " + what);
+    OptimizeOptions o;
+    o.targets = {FigureTarget::parse(target)};
+    const OptimizeResult r = optimize(preset, o);
+    add("optimize." + id + "_s",
+        "phedra optimize of " + what + " to " + target + ": " + (r.reached ? "reached" : "NOT reached") + ", " +
+            std::to_string(r.evaluations) + " designs built, " + std::to_string(r.changes.size()) + " fields changed",
+        r.reached ? r.seconds : std::numeric_limits<double>::infinity(), "s", goal);
+  }
+
+  void optimize_figures() {
+    // The grid's Poisson's ratio along/across its tubes made auxetic (1.50 -> -0.8).
+    optimize_one("grid_3x3", "the 3 x 3 grid preset",
+                 preset_object(parse_json_text(read_text_file(std::string(PHEDRA_PRESETS_DIR) + "/grid-3x3.json"))), "poisson.nu_12=-0.8", 10.0);
+    const std::size_t strips = options_.quick ? 20 : 100;
+    const nlohmann::json helix = designer_helix_preset(strips);
+    const double nu = *metamaterial_metrics(design_from_json(helix), {.samples = 2}).figure("poisson.nu_13");
+    optimize_one("strips_" + std::to_string(strips), "a helical open design of " + std::to_string(strips) + " strips",
+                 helix, "poisson.nu_13=" + format_short(nu + 0.3), options_.quick ? std::optional<double>() : std::optional<double>(60.0));
   }
 
   const BenchOptions& options_;

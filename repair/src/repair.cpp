@@ -28,9 +28,11 @@ BuildabilityReport verify(const json& preset, const SizeBounds& bounds, bool swe
   return assess_buildability(design_from_json(preset), nullptr, options);
 }
 
+}  // namespace
+
 /// Every number that differs between two presets, as fields (directions as turns).
 std::vector<FieldChange> changes_between(const json& before, const json& after, double size,
-                                         const json::json_pointer& at = json::json_pointer()) {
+                                         const json::json_pointer& at) {
   std::vector<FieldChange> out;
   const json& b = before.at(at);
   const json& a = after.at(at);
@@ -62,8 +64,6 @@ std::vector<FieldChange> changes_between(const json& before, const json& after, 
   }
   return out;
 }
-
-}  // namespace
 
 json named_result(const json& result, const std::string& input_name, const std::string& vary, const RepairResult& r) {
   json out = result;

@@ -97,7 +97,12 @@ const std::vector<double>& Problem::at(const double* x) {
     const std::size_t motion = slots_per_face * panels_;
     cached_[motion] = cached_[motion + 1] = cached_[motion + 2] = 0.0;
     if (motion_ == MotionMode::t_star) {
-      cached_[motion] = 10.0 * motion_margins(d, a.t_star(), a.t_star(), 0).depth_sum / size_;
+      const MotionMargins m = motion_margins(d, a.t_star(), a.t_star(), 0);
+      cached_[motion] = 10.0 * m.depth_sum / size_;
+      // At t* alone the openings are not continued from anywhere: they lie in
+      // [0, 2 pi), and a hinge within 1e-6 of shut (0 or 2 pi) is one that a
+      // collision test calls folded there; the margin is minus that distance.
+      cached_[motion + 1] = std::max(m.folded + 1e-6, 0.0);
     } else if (motion_ == MotionMode::range) {
       const auto [from, to] = required_range(a, fraction_);
       const MotionMargins m = motion_margins(d, from, to, options_.motion_samples);
@@ -150,7 +155,30 @@ double violation(unsigned n, const double* x, double* gradient, void* data) {
   return sum;
 }
 
-/// Bounds, steps and stopping rules shared by the local searches.
+/// The nearest point: Subplex on distance^2 + weight * summed violations (an
+/// exact penalty: for a large enough weight its minimum is the constrained one,
+/// and Subplex copes with its kinks), keeping the nearest feasible design seen.
+struct Nearest {
+  Search search;
+  double weight = 100.0;
+  std::vector<double> best;
+  double best_distance = std::numeric_limits<double>::infinity();
+};
+
+double penalized(unsigned n, const double* x, double* gradient, void* data) {
+  Nearest& s = *static_cast<Nearest*>(data);
+  const double distance = objective(n, x, gradient, &s.search);
+  double sum = 0.0;
+  for (double v : s.search.problem.at(x)) sum += v > 0.0 ? v : 0.0;
+  if (sum == 0.0 && distance < s.best_distance) {
+    s.best_distance = distance;
+    s.best.assign(x, x + n);
+  }
+  return distance + s.weight * sum;
+}
+
+}  // namespace
+
 void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<double>& x, const RepairOptions& options,
                double seconds_left) {
   const std::size_t n = variables.size();
@@ -181,30 +209,6 @@ void run_opt(nlopt::opt& opt, std::vector<double>& x) {
   } catch (const std::runtime_error&) {  // NLopt's generic failure: keep where it stopped
   }
 }
-
-/// The nearest point: Subplex on distance^2 + weight * summed violations (an
-/// exact penalty: for a large enough weight its minimum is the constrained one,
-/// and Subplex copes with its kinks), keeping the nearest feasible design seen.
-struct Nearest {
-  Search search;
-  double weight = 100.0;
-  std::vector<double> best;
-  double best_distance = std::numeric_limits<double>::infinity();
-};
-
-double penalized(unsigned n, const double* x, double* gradient, void* data) {
-  Nearest& s = *static_cast<Nearest*>(data);
-  const double distance = objective(n, x, gradient, &s.search);
-  double sum = 0.0;
-  for (double v : s.search.problem.at(x)) sum += v > 0.0 ? v : 0.0;
-  if (sum == 0.0 && distance < s.best_distance) {
-    s.best_distance = distance;
-    s.best.assign(x, x + n);
-  }
-  return distance + s.weight * sum;
-}
-
-}  // namespace
 
 double total_violation(Problem& problem, const std::vector<double>& x) {
   double sum = 0.0;

@@ -7,6 +7,7 @@
 #include "phedra/repair.h"
 
 #include <nlohmann/json.hpp>
+#include <nlopt.hpp>
 
 #include <chrono>
 #include <optional>
@@ -78,6 +79,14 @@ class Problem {
   std::size_t evaluations_ = 0;
   std::vector<double> cached_x_, cached_;
 };
+
+/// Bounds (each variable within half the model size, or a quarter turn, of its
+/// start; a fixed one at it), initial steps and stopping rules of a local search.
+void configure(nlopt::opt& opt, const DesignVariables& variables, std::vector<double>& x, const RepairOptions& options,
+               double seconds_left);
+
+/// Runs `opt` from x, keeping where it stopped when NLopt gives up (round-off, forced stop).
+void run_opt(nlopt::opt& opt, std::vector<double>& x);
 
 /// The summed violations of x (0: feasible).
 double total_violation(Problem& problem, const std::vector<double>& x);

@@ -111,6 +111,10 @@ RepairResult repair(const nlohmann::json& preset, const RepairOptions& options =
 nlohmann::json named_result(const nlohmann::json& result, const std::string& input_name, const std::string& vary,
                             const RepairResult& r);
 
+/// Every number that differs between two presets, as fields (directions as turns), lengths relative to `size`.
+std::vector<FieldChange> changes_between(const nlohmann::json& before, const nlohmann::json& after, double size,
+                                         const nlohmann::json::json_pointer& at = nlohmann::json::json_pointer());
+
 /// The buildable part of a report as a fraction of the way from t* to each
 /// limit (the smaller side): 1 for the whole interval, 0 for t* alone or none.
 double buildable_fraction(const BuildabilityReport& report);
