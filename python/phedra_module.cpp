@@ -17,6 +17,8 @@
 #include "phedra/motion_document.h"
 #include "phedra/preset.h"
 #include "phedra/repair.h"
+#include "phedra/optimize.h"
+#include "phedra/panel_size.h"
 
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
@@ -179,6 +181,86 @@ class PyDesign {
     return py::make_tuple(repaired, result);
   }
 
+  /// The design nearest this one whose figures meet `targets` (a str, a list of
+  /// str as --target takes them, or a dict {name: value} of equalities), and/or
+  /// whose panels at t* pass near `fit` (a (k, 3) array of points): (Design or
+  /// None, result dict) as phedra optimize --json.
+  py::tuple optimize(const py::object& targets, const py::object& fit, std::optional<double> fit_tol,
+                     const std::string& vary, bool keep_buildable, double tol, const std::string& axes,
+                     double max_seconds, unsigned seed) const {
+    OptimizeOptions options;
+    if (py::isinstance<py::str>(targets)) {
+      options.targets.push_back(FigureTarget::parse(targets.cast<std::string>()));
+    } else if (py::isinstance<py::dict>(targets)) {
+      for (const auto& [name, value] : targets.cast<py::dict>()) {
+        options.targets.push_back(FigureTarget::parse(py::str(name).cast<std::string>() + "=" + py::str(value).cast<std::string>()));
+      }
+    } else if (!targets.is_none()) {
+      for (const py::handle& t : targets) options.targets.push_back(FigureTarget::parse(py::str(t).cast<std::string>()));
+    }
+    if (!fit.is_none()) {
+      const py::array_t<double, py::array::c_style | py::array::forcecast> points(fit);
+      if (points.ndim() != 2 || points.shape(1) != 3 || points.shape(0) < 3) {
+        throw InvalidInputError("fit", "points as a (k, 3) array with k >= 3");
+      }
+      FitTarget f;
+      for (py::ssize_t k = 0; k < points.shape(0); ++k) f.points.emplace_back(points.at(k, 0), points.at(k, 1), points.at(k, 2));
+      for (const Vec3& p : f.points) {
+        if (!p.allFinite()) throw InvalidInputError("fit", "a point is not finite");
+      }
+      f.tolerance = fit_tol ? *fit_tol : 0.01 * bounded_model_size(*design_, options.bounds);
+      if (!(f.tolerance > 0.0)) throw InvalidInputError("fit_tol", "must be positive");
+      options.fit = f;
+    }
+    options.vary = parse_variable_groups(vary);
+    options.keep_buildable = keep_buildable;
+    options.relative_tolerance = tol;
+    options.axes = parse_metrics_axes(axes);
+    options.max_seconds = max_seconds;
+    options.seed = seed;
+    OptimizeResult r;
+    {
+      py::gil_scoped_release release;
+      r = phedra::optimize(preset_object(preset_), options);
+    }
+    py::dict result;
+    result["reached"] = r.reached;
+    py::list outcomes;
+    for (const TargetOutcome& t : r.targets) {
+      py::dict o;
+      o["target"] = t.target;
+      o["before"] = t.before ? py::cast(*t.before) : py::none();
+      o["after"] = t.after ? py::cast(*t.after) : py::none();
+      o["met"] = t.met;
+      o["error"] = t.error;
+      outcomes.append(o);
+    }
+    result["targets"] = outcomes;
+    result["buildable"] = r.buildable;
+    result["buildability"] = r.buildability;
+    result["binding"] = r.binding.empty() ? py::none() : py::cast(r.binding);
+    py::list changes;
+    for (const FieldChange& c : r.changes) {
+      py::dict change;
+      change["field"] = c.field;
+      change["before"] = to_python(c.before);
+      change["after"] = to_python(c.after);
+      change["change"] = c.change;
+      change["relative"] = c.relative;
+      changes.append(change);
+    }
+    result["changes"] = changes;
+    result["distance"] = r.distance;
+    result["evaluations"] = r.evaluations;
+    result["seconds"] = r.seconds;
+    result["notes"] = r.notes;
+    const nlohmann::json named = named_optimized(r.preset, name(), vary, r);
+    result["closest"] = r.reached ? py::none() : to_python(named);
+    py::object optimized = py::none();
+    if (r.reached) optimized = py::cast(PyDesign(named, source_ + " (optimized)"));
+    return py::make_tuple(optimized, result);
+  }
+
   /// Writes the design: .glb / .gltf (animated), .fold (frames over the
   /// interval), .json (the motion document), .obj / .ply (at t, default t*).
   void export_to(const std::string& path, std::size_t count, std::optional<double> t) const {
@@ -285,6 +367,11 @@ PYBIND11_MODULE(phedra, m) {
       .def("repair", &PyDesign::repair, py::arg("vary") = "apex_heights,directions", py::arg("require") = 1.0,
            py::arg("objective") = "distance", py::arg("max_seconds") = 60.0,
            "The nearest buildable design: (Design or None, result dict) as phedra repair")
+      .def("optimize", &PyDesign::optimize, py::arg("targets") = py::none(), py::arg("fit") = py::none(),
+           py::arg("fit_tol") = py::none(), py::arg("vary") = "apex_heights,directions", py::arg("keep_buildable") = true,
+           py::arg("tol") = 0.02, py::arg("axes") = "structural", py::arg("max_seconds") = 60.0, py::arg("seed") = 1u,
+           "The nearest design whose figures meet the targets ('poisson.nu_12=-0.8', a list of them, or a dict of "
+           "equalities) and/or that passes near fit points: (Design or None, result dict) as phedra optimize")
       .def("export", &PyDesign::export_to, py::arg("path"), py::arg("count") = 41, py::arg("t") = py::none(),
            "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, default t*)")
       .def("__repr__", [](const PyDesign& d) {
