@@ -14,6 +14,8 @@
 #include "phedra/preset.h"
 #include "phedra/keep_buildable.h"
 #include "phedra/repair.h"
+#include "phedra/metamaterial_metrics.h"
+#include "phedra/optimize.h"
 #include "phedra/self_intersection.h"
 #include "phedra/design_preset.h"
 
@@ -413,6 +415,86 @@ class Designer {
     return val(emscripten::typed_memory_view(glb_.size(), reinterpret_cast<const std::uint8_t*>(glb_.data())));
   }
 
+  /// The figures `phedra optimize` targets (phedra metrics --json's `figures`):
+  /// {ok: true, names: [...], figures: {name: value or null}}, or {ok: false, ...}.
+  val figures() const {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      const MetricsReport r = metamaterial_metrics(*design_);
+      val v = val::object();
+      v.set("ok", true);
+      val names = val::array(), values = val::object();
+      for (const std::string& name : figure_names()) {
+        names.call<void>("push", name);
+        const std::optional<double> f = r.figure(name);
+        values.set(name, f ? val(*f) : val::null());
+      }
+      v.set("names", names);
+      v.set("figures", values);
+      return v;
+    } catch (const Error& e) {
+      return failure("", e.what());
+    }
+  }
+
+  /// The nearest design whose figures meet targets, as `phedra optimize` finds it.
+  /// `options_text`: JSON {targets: ["poisson.nu_12=-0.8", ...], vary:
+  /// "apex_heights,directions", max_seconds: 10, fixed: [JSON pointers]}. Returns
+  /// {ok: true, reached, targets: [{target, before, after, met}], buildable,
+  /// buildability, binding, changes: [{field, before, after, change, relative}], preset (its text,
+  /// "NAME-optimized", when reached), evaluations, seconds}, or {ok: false, field,
+  /// message}. The shown design does not change (the page loads the result).
+  val optimize(const std::string& options_text) const {
+    if (!design_) return failure("", "no design loaded");
+    try {
+      const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
+      OptimizeOptions options;
+      for (const std::string& t : o.value("targets", std::vector<std::string>{})) options.targets.push_back(FigureTarget::parse(t));
+      const std::string vary = o.value("vary", std::string("apex_heights,directions"));
+      options.vary = parse_variable_groups(vary);
+      options.max_seconds = o.value("max_seconds", 10.0);
+      options.fixed = o.value("fixed", std::vector<std::string>{});
+      const OptimizeResult r = phedra::optimize(document_, options);
+      val v = val::object();
+      v.set("ok", true);
+      v.set("reached", r.reached);
+      val targets = val::array();
+      for (const TargetOutcome& t : r.targets) {
+        val x = val::object();
+        x.set("target", t.target);
+        x.set("before", t.before ? val(*t.before) : val::null());
+        x.set("after", t.after ? val(*t.after) : val::null());
+        x.set("met", t.met);
+        targets.call<void>("push", x);
+      }
+      v.set("targets", targets);
+      v.set("buildable", r.buildable);
+      v.set("buildability", r.buildability);
+      v.set("binding", r.binding);
+      val changes = val::array();
+      for (const FieldChange& c : r.changes) {
+        val change = val::object();
+        change.set("field", c.field);
+        change.set("before", c.before.dump());
+        change.set("after", c.after.dump());
+        change.set("change", c.change);
+        change.set("relative", c.relative);
+        changes.call<void>("push", change);
+      }
+      v.set("changes", changes);
+      if (r.reached) v.set("preset", named_optimized(r.preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
+      v.set("evaluations", static_cast<double>(r.evaluations));
+      v.set("seconds", r.seconds);
+      return v;
+    } catch (const InvalidInputError& e) {
+      return failure(e.field(), e.reason());
+    } catch (const Error& e) {
+      return failure("", e.what());
+    } catch (const nlohmann::json::exception& e) {
+      return failure("options", e.what());
+    }
+  }
+
   /// The nearest buildable design, as `phedra repair` finds it. `options_text`:
   /// JSON {vary: "apex_heights,directions", require: 1, max_seconds: 10, fixed:
   /// ["/trajectory/3"] (fields that stay)}, each optional. Returns {ok: true, found, already_buildable, fraction, distance,
@@ -518,5 +600,7 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("invalidPanels", &Designer::invalidPanels)
       .function("glb", &Designer::glb)
       .function("fold", &Designer::fold)
-      .function("repair", &Designer::repair);
+      .function("repair", &Designer::repair)
+      .function("figures", &Designer::figures)
+      .function("optimize", &Designer::optimize);
 }

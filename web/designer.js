@@ -16,6 +16,7 @@
 //   camera.js        Fit view, Fit t, the ground grid, a (gliding) refit when the design left the view
 //   panel.js         the title, status, causes, figures, slider labels, signs, Undo / Redo state
 //   buildability.js  the buildability report and figures, Repair, keep buildable
+//   targets.js       the Targets box: the figures phedra optimize targets, live, and Optimize
 //   modes.js         mode, grid and row sizes, profiles and apexes
 //   files.js         save, open, drop, shipped presets, .glb / FOLD / PNG, the first preset
 //   api.js           window.phedraDesigner, for tests and measurements
@@ -33,6 +34,7 @@ import { createPanel } from './designer/panel.js';
 import { createRenderLoop } from './designer/render.js';
 import { DesignState, travelText } from './designer/state.js';
 import { createSurface } from './designer/surface.js';
+import { createTargets } from './designer/targets.js';
 import { $ } from './designer/util.js';
 
 // --- the stage (before the core loads) ---------------------------------------
@@ -58,7 +60,8 @@ const panel = createPanel({
 state.onHistory = () => { panel.updateUndo(); panel.showTitle(); };
 const dragging = createDragging({ ...stage, state, handles, loop, applyEdit, settle });
 const framing = createFraming({ ...stage, state, designer, handles, surface, isDragging: () => dragging.current !== null, requestRender });
-const checks = createBuildability({ state, designer, panel, surface, apply });
+const checks = createBuildability({ state, designer, panel, surface, apply, onFigures: () => targets.refresh() });
+const targets = createTargets({ state, designer, apply });
 
 /// The slider at t* (the input configuration: the surface passes through the
 /// handles); `before`: t* of the previous design, to say when an edit moved it
@@ -94,6 +97,7 @@ function apply(candidate, { keepFigures = false, what = 'edit', record = true, k
   const shownT = state.info ? state.tOf(state.fraction) : null;
   state.preset = candidate;
   panel.showRepair('');  // a new design: an earlier repair's message no longer applies (Repair and Undo say theirs after)
+  if (what !== 'optimize') targets.show('');  // nor an earlier optimization's
   state.info = designer.info();
   state.faces = Uint32Array.from(designer.faces());
   state.invalidPanels = new Set(Array.from(designer.invalidPanels()));

@@ -112,7 +112,7 @@ std::vector<TargetOutcome> evaluate_targets(const Design& design, const Optimize
 namespace {
 
 /// Buildable as `phedra check` says it: the whole interval swept, 200 samples a side.
-BuildabilityReport verify(const Design& design, const SizeBounds& bounds) {
+BuildabilityReport verify_buildable(const Design& design, const SizeBounds& bounds) {
   BuildabilityOptions options;
   options.bounds = bounds;
   options.diagnosis.hints = false;
@@ -227,7 +227,7 @@ class TargetRun {
         if (!o.met) return false;
       }
       if (!options_.keep_buildable) return true;
-      if (verify(d, options_.bounds).buildable()) return true;
+      if (verify_buildable(d, options_.bounds).buildable()) return true;
       // Reached, but the motion collides away from t*: the sweep joins the constraints.
       problem_.set_mode(ShapeMode::exact, MotionMode::range, 1.0);
       return false;
@@ -355,7 +355,7 @@ OptimizeResult optimize(const json& preset, const OptimizeOptions& given) {
   const Design result = design_from_json(r.preset);
   r.targets = evaluate_targets(result, options);
   for (std::size_t k = 0; k < r.targets.size() && k < before.size(); ++k) r.targets[k].before = before[k].after;
-  const BuildabilityReport b = verify(result, options.bounds);
+  const BuildabilityReport b = verify_buildable(result, options.bounds);
   r.buildable = b.buildable();
   r.buildability = b.summary();
 
@@ -390,7 +390,7 @@ OptimizeResult optimize(const json& preset, const OptimizeOptions& given) {
           }
           if (met || free_total < 0.25 * total) {
             why = std::string("buildability: without it the targets are ") + (met ? "reached" : "closer") +
-                  " (that design: " + verify(free, options.bounds).summary() + ")";
+                  " (that design: " + verify_buildable(free, options.bounds).summary() + ")";
           }
         } catch (const Error&) {
         }

@@ -72,6 +72,43 @@ try {
     check(bar && Math.abs(bar[0]) < 0.5 && Math.abs(bar[1] - 100) < 0.5, `the buildable bar of the default preset: ${bar}`);
     check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'red panels on the default preset');
   }
+  {
+    // Targets (issue 26, item 2): the figures live as `phedra metrics` has them, a
+    // target typed in, Optimize reaches it (the same core as `phedra optimize`), Undo.
+    await page.click('#targets summary');
+    const shown = async () => Object.fromEntries(await page.$$eval('#targets-table tr',
+      (rows) => rows.map((r) => [r.cells[0].textContent, r.cells[1].textContent])));
+    const figures = await shown();
+    const cli = JSON.parse(execFileSync(phedra, ['metrics', preset, '--json'], { encoding: 'utf8' })).figures;
+    check(Object.keys(figures).length === 8 && Object.keys(cli).every((k) => k in figures), `the Targets box's figures: ${JSON.stringify(figures)}`);
+    check(Math.abs(Number(figures['poisson.nu_13']) - cli['poisson.nu_13']) < 1e-3, `nu_13 shown ${figures['poisson.nu_13']} vs CLI ${cli['poisson.nu_13']}`);
+    check(await page.$eval('#optimize', (e) => e.disabled), 'Optimize enabled with no target');
+    await page.fill('#targets-table tr:nth-child(2) input', '-1');  // poisson.nu_13 = -1 (typing sets '=')
+    check(!(await page.$eval('#optimize', (e) => e.disabled)), 'Optimize disabled with a target');
+    await page.click('#optimize');
+    await page.waitForFunction(() => /^(reached|not reached|optimize refused)/.test(document.getElementById('optimize-result').textContent),
+      null, { timeout: 60000 });
+    const result = await page.$eval('#optimize-result', (e) => e.textContent);
+    check(result.startsWith('reached: poisson.nu_13=-1: '), `optimize result: "${result}"`);
+    await settled();
+    await page.waitForTimeout(300);
+    const after = await shown();
+    check(Math.abs(Number(after['poisson.nu_13']) + 1) <= 0.02, `nu_13 after Optimize: ${after['poisson.nu_13']}`);
+    const optimized = await api(() => window.phedraDesigner.preset());
+    check(optimized.name.endsWith('-optimized'), `optimized preset name ${optimized.name}`);
+    const saved = path.join(scratch, 'optimized.json');
+    writeFileSync(saved, JSON.stringify(optimized));
+    const confirmed = JSON.parse(execFileSync(phedra, ['metrics', saved, '--json'], { encoding: 'utf8' })).figures['poisson.nu_13'];
+    check(Math.abs(confirmed + 1) <= 0.02, `phedra metrics of the optimized design: nu_13 ${confirmed}`);
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-targets.png') });
+    await page.click('#undo');
+    await settled();
+    await page.waitForTimeout(300);
+    check((await shown())['poisson.nu_13'] === figures['poisson.nu_13'], 'Undo did not bring nu_13 back');
+    await page.fill('#targets-table tr:nth-child(2) input', '');
+    await page.selectOption('#targets-table tr:nth-child(2) select', '');
+    await page.click('#targets summary');
+  }
   const loadFile = async (file) => {
     const text = JSON.parse(readFileSync(file, 'utf8'));
     const ok = await api((p) => window.phedraDesigner.apply(p), text.preset ?? text);

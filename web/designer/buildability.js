@@ -21,7 +21,8 @@ const repairSeconds = 10;
 const keepBudget = 7;  // ms: with the stop at the wall (5 designs) and the redraw, within a 60 Hz frame
 
 /// `designer`: the core's Designer; `apply(preset, options)`: shows a design (undoably).
-export function createBuildability({ state, designer, panel, surface, apply }) {
+/// `onFigures`: called once the figures of a settled design are shown.
+export function createBuildability({ state, designer, panel, surface, apply, onFigures = () => {} }) {
   let keepHeld = null;    // the JSON pointer of the field the last keep-buildable drag held
   let lastKeep = null;    // designer.keep's answer to the last step
   let lastRepair = null;  // t* before and after the last repair shown: {tStarBefore, tStarAfter, moved, freed}
@@ -52,6 +53,7 @@ export function createBuildability({ state, designer, panel, surface, apply }) {
       surface.scheduleCollisions();
       state.figures = designer.check(41);
       panel.showFigures();
+      onFigures();
     }, 150);
   }
 
