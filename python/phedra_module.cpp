@@ -45,6 +45,21 @@ json from_python(const py::handle& object) {
 }
 
 /// A design with its preset and its motion document (labels, faces, positions).
+/// The fields a repair or an optimization changed, as dicts {field, before, after, change, relative}.
+py::list changes_list(const std::vector<FieldChange>& changes) {
+  py::list out;
+  for (const FieldChange& c : changes) {
+    py::dict change;
+    change["field"] = c.field;
+    change["before"] = to_python(c.before);
+    change["after"] = to_python(c.after);
+    change["change"] = c.change;
+    change["relative"] = c.relative;
+    out.append(change);
+  }
+  return out;
+}
+
 class PyDesign {
  public:
   PyDesign(json preset, std::string source) : preset_(std::move(preset)), source_(std::move(source)) {
@@ -156,17 +171,7 @@ class PyDesign {
     result["already_buildable"] = r.already_buildable;
     result["fraction"] = r.fraction;
     result["distance"] = r.distance;
-    py::list changes;
-    for (const FieldChange& c : r.changes) {
-      py::dict change;
-      change["field"] = c.field;
-      change["before"] = to_python(c.before);
-      change["after"] = to_python(c.after);
-      change["change"] = c.change;
-      change["relative"] = c.relative;
-      changes.append(change);
-    }
-    result["changes"] = changes;
+    result["changes"] = changes_list(r.changes);
     result["nearest_changes"] = r.nearest_changes;
     result["escalated"] = r.escalated;
     result["before"] = to_python(r.before.file_json());
@@ -239,17 +244,7 @@ class PyDesign {
     result["buildable"] = r.buildable;
     result["buildability"] = r.buildability;
     result["binding"] = r.binding.empty() ? py::none() : py::cast(r.binding);
-    py::list changes;
-    for (const FieldChange& c : r.changes) {
-      py::dict change;
-      change["field"] = c.field;
-      change["before"] = to_python(c.before);
-      change["after"] = to_python(c.after);
-      change["change"] = c.change;
-      change["relative"] = c.relative;
-      changes.append(change);
-    }
-    result["changes"] = changes;
+    result["changes"] = changes_list(r.changes);
     result["distance"] = r.distance;
     result["evaluations"] = r.evaluations;
     result["seconds"] = r.seconds;

@@ -223,7 +223,7 @@ namespace {
 std::size_t target_count() {
   if (const char* n = std::getenv("PHEDRA_OPTIMIZE_TARGETS")) return static_cast<std::size_t>(std::stoul(n));
   const char* v = std::getenv("PHEDRA_LONG_TESTS");
-  return v && std::string(v) == "1" ? 200 : 12;
+  return v && std::string(v) == "1" ? 200 : 12;  // 200: 200 of 200 reached (docs/design.md)
 }
 
 }  // namespace

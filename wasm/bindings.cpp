@@ -34,12 +34,41 @@ namespace {
 using emscripten::val;
 using namespace phedra;
 
+/// The fields a repair or an optimization changed: [{field, before, after (JSON text), change, relative}].
+val changes_val(const std::vector<FieldChange>& changes) {
+  val out = val::array();
+  for (const FieldChange& c : changes) {
+    val change = val::object();
+    change.set("field", c.field);
+    change.set("before", c.before.dump());
+    change.set("after", c.after.dump());
+    change.set("change", c.change);
+    change.set("relative", c.relative);
+    out.call<void>("push", change);
+  }
+  return out;
+}
+
 val failure(const std::string& field, const std::string& message) {
   val v = val::object();
   v.set("ok", false);
   v.set("field", field);
   v.set("message", message);
   return v;
+}
+
+/// body()'s answer, or the failure its error says (options as JSON text: "options").
+template <class Body>
+val answer(Body&& body) {
+  try {
+    return body();
+  } catch (const InvalidInputError& e) {
+    return failure(e.field(), e.reason());
+  } catch (const Error& e) {
+    return failure("", e.what());
+  } catch (const nlohmann::json::exception& e) {
+    return failure("options", e.what());
+  }
 }
 
 class Designer {
@@ -446,7 +475,7 @@ class Designer {
   /// message}. The shown design does not change (the page loads the result).
   val optimize(const std::string& options_text) const {
     if (!design_) return failure("", "no design loaded");
-    try {
+    return answer([&] {
       const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
       OptimizeOptions options;
       for (const std::string& t : o.value("targets", std::vector<std::string>{})) options.targets.push_back(FigureTarget::parse(t));
@@ -471,28 +500,12 @@ class Designer {
       v.set("buildable", r.buildable);
       v.set("buildability", r.buildability);
       v.set("binding", r.binding);
-      val changes = val::array();
-      for (const FieldChange& c : r.changes) {
-        val change = val::object();
-        change.set("field", c.field);
-        change.set("before", c.before.dump());
-        change.set("after", c.after.dump());
-        change.set("change", c.change);
-        change.set("relative", c.relative);
-        changes.call<void>("push", change);
-      }
-      v.set("changes", changes);
+      v.set("changes", changes_val(r.changes));
       if (r.reached) v.set("preset", named_optimized(r.preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
       v.set("evaluations", static_cast<double>(r.evaluations));
       v.set("seconds", r.seconds);
       return v;
-    } catch (const InvalidInputError& e) {
-      return failure(e.field(), e.reason());
-    } catch (const Error& e) {
-      return failure("", e.what());
-    } catch (const nlohmann::json::exception& e) {
-      return failure("options", e.what());
-    }
+    });
   }
 
   /// The nearest buildable design, as `phedra repair` finds it. `options_text`:
@@ -505,7 +518,7 @@ class Designer {
   /// the result, keeping the previous one for its undo).
   val repair(const std::string& options_text) const {
     if (!design_) return failure("", "no design loaded");
-    try {
+    return answer([&] {
       const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
       RepairOptions options;
       const std::string vary = o.value("vary", std::string("apex_heights,directions"));
@@ -522,17 +535,7 @@ class Designer {
       v.set("distance", r.distance);
       v.set("before", r.before.summary());
       v.set("after", r.after.summary());
-      val changes = val::array();
-      for (const FieldChange& c : r.changes) {
-        val change = val::object();
-        change.set("field", c.field);
-        change.set("before", c.before.dump());
-        change.set("after", c.after.dump());
-        change.set("change", c.change);
-        change.set("relative", c.relative);
-        changes.call<void>("push", change);
-      }
-      v.set("changes", changes);
+      v.set("changes", changes_val(r.changes));
       if (r.found && !r.already_buildable) {
         v.set("preset", named_result(r.preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
       }
@@ -541,13 +544,7 @@ class Designer {
       v.set("starts", static_cast<double>(r.starts));
       v.set("seconds", r.seconds);
       return v;
-    } catch (const InvalidInputError& e) {
-      return failure(e.field(), e.reason());
-    } catch (const Error& e) {
-      return failure("", e.what());
-    } catch (const nlohmann::json::exception& e) {
-      return failure("options", e.what());
-    }
+    });
   }
 
   /// FOLD text with `count` frames over the flexion interval (as `phedra generate -o X.fold --count N`).
