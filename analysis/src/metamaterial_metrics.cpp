@@ -173,14 +173,14 @@ bool figure_needs_interval(const std::string& name) {
   return name.rfind("extent_deployment.", 0) == 0 || name == "volume_ratio";
 }
 
-std::optional<double> MetricsReport::figure(const std::string& name) const {
+std::optional<double> MetricsReport::figure(const std::string& wanted) const {
   for (int k = 0; k < 3; ++k) {
-    if (name == figure_names()[k]) return at_t_star.poisson[k];
-    if (name == figure_names()[3 + k]) return extent_deployment[k];
+    if (wanted == figure_names()[k]) return at_t_star.poisson[k];
+    if (wanted == figure_names()[3 + k]) return extent_deployment[k];
   }
-  if (name == "flexion_width") return flexion_width();
-  if (name == "volume_ratio") return volume_deployment;
-  throw InvalidInputError("figure", "unknown figure \"" + name + "\"");
+  if (wanted == "flexion_width") return flexion_width();
+  if (wanted == "volume_ratio") return volume_deployment;
+  throw InvalidInputError("figure", "unknown figure \"" + wanted + "\"");
 }
 
 nlohmann::json MetricsReport::to_json() const {

@@ -40,12 +40,21 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 
 struct SurfaceTriangle {
   Vec3 a, b, c;
+  Vec3 centre;          ///< of its bounding sphere (the corners' mean)
+  double radius = 0.0;  ///< the farthest corner from it
+  SurfaceTriangle(const Vec3& a_, const Vec3& b_, const Vec3& c_) : a(a_), b(b_), c(c_), centre((a_ + b_ + c_) / 3.0) {
+    radius = std::sqrt(std::max({(a - centre).squaredNorm(), (b - centre).squaredNorm(), (c - centre).squaredNorm()}));
+  }
 };
 
+/// The closest point of the panels to p: triangles whose bounding sphere is
+/// farther than the best so far are skipped.
 Vec3 closest_on_surface(const Vec3& p, const std::vector<SurfaceTriangle>& triangles) {
   Vec3 best = triangles.front().a;
   double distance = std::numeric_limits<double>::infinity();
   for (const SurfaceTriangle& t : triangles) {
+    const double reach = (t.centre - p).norm() - t.radius;
+    if (reach > 0.0 && reach * reach >= distance) continue;
     const Vec3 q = closest_on_triangle(p, t.a, t.b, t.c);
     const double d = (q - p).squaredNorm();
     if (d < distance) distance = d, best = q;
@@ -92,8 +101,8 @@ SurfaceFit fit(const Design& design, const std::vector<Vec3>& points, const Mat3
     const Points& x = c.members[m];
     for (std::size_t f = 0; f < g.face_count(); ++f) {
       const Quad q = g.face(f);
-      triangles.push_back({x[q[0]], x[q[1]], x[q[2]]});
-      triangles.push_back({x[q[0]], x[q[2]], x[q[3]]});
+      triangles.emplace_back(x[q[0]], x[q[1]], x[q[2]]);
+      triangles.emplace_back(x[q[0]], x[q[2]], x[q[3]]);
     }
     for (const Vec3& p : x) surface_centroid += p;
     count += x.size();
@@ -120,7 +129,7 @@ SurfaceFit fit(const Design& design, const std::vector<Vec3>& points, const Mat3
         sum += (matched[k] - moved).squaredNorm();
       }
       rms = std::sqrt(sum / static_cast<double>(points.size()));
-      if (previous - rms <= 1e-9 * (1.0 + rms)) break;
+      if (previous - rms <= 1e-7 * rms + 1e-12) break;
       previous = rms;
       Vec3 target = Vec3::Zero();
       for (const Vec3& q : matched) target += q;
@@ -136,9 +145,9 @@ SurfaceFit fit(const Design& design, const std::vector<Vec3>& points, const Mat3
     return r;
   };
   auto axes_of = [](const std::vector<Vec3>& p, const Vec3& mean) {
-    Mat3 c = Mat3::Zero();
-    for (const Vec3& q : p) c += (q - mean) * (q - mean).transpose();
-    Mat3 v = Eigen::SelfAdjointEigenSolver<Mat3>(c).eigenvectors();
+    Mat3 spread = Mat3::Zero();
+    for (const Vec3& q : p) spread += (q - mean) * (q - mean).transpose();
+    Mat3 v = Eigen::SelfAdjointEigenSolver<Mat3>(spread).eigenvectors();
     if (v.determinant() < 0.0) v.col(0) = -v.col(0);
     return v;
   };

@@ -55,7 +55,7 @@ struct MetricsReport {
 
   /// The figures by the names `phedra optimize --target` takes (figure_names()):
   /// none where undefined.
-  std::optional<double> figure(const std::string& name) const;
+  std::optional<double> figure(const std::string& wanted) const;
   /// For the plots: the buildable part of the interval around t* (buildability.h),
   /// none when nothing is buildable; known once the command has assessed it.
   bool buildability_known = false;
