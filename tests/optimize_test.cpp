@@ -212,21 +212,15 @@ TEST_CASE("optimize --fit: a design moved back onto points taken from another on
   const double before = fit_distance(input, list);
   CHECK(before > 0.02);
   std::ofstream(dir / "surface.json") << json{{"points", points}}.dump();
-  const std::string out = dir / "fit.json";
-#ifdef PHEDRA_SANITIZE_BUILD
-  // The code paths only (a search is about 10x slower there): a few seconds of it.
-  const Run r = phedra_cli({"optimize", presets + "/default.json", "--fit", dir / "surface.json", "--fit-tol", "0.02",
-                            "--vary", "apex_heights", "-o", out, "--max-seconds", "3"});
-  CHECK((r.code == 0 || r.code == 1));
-  return;
-#else
+  [[maybe_unused]] const std::string out = dir / "fit.json";
+#ifndef PHEDRA_SANITIZE_BUILD  // there the fit's own code above; the search with it is the Release run's (10x slower)
   const Run r = phedra_cli({"optimize", presets + "/default.json", "--fit", dir / "surface.json", "--fit-tol", "0.02",
                             "--vary", "apex_heights", "-o", out, "--max-seconds", "300"});
-#endif
   CAPTURE(r.out, r.err);
   REQUIRE(r.code == 0);
   CHECK(fit_distance(load_design(out), list) <= 0.02);
   CHECK(check_passes(out));
+#endif
 }
 
 namespace {
@@ -247,7 +241,11 @@ std::size_t target_count() {
 }  // namespace
 
 TEST_CASE("optimize: success rate over random targets on the shipped presets, every result verified", "[optimize][property]") {
+#ifdef PHEDRA_SANITIZE_BUILD
+  const std::vector<std::string> names{"default"};  // the code paths, on the quickest design
+#else
   const std::vector<std::string> names{"grid-3x3", "parallelogram-tube", "default", "row-of-cells"};
+#endif
   std::mt19937_64 rng(2026);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::size_t count = target_count();
