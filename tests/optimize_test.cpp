@@ -26,19 +26,13 @@ using phedra::test::phedra_cli;
 using phedra::test::presets;
 using phedra::test::read_json;
 using phedra::test::Run;
+using phedra::test::TempDir;
 using Catch::Matchers::Contains;
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 using namespace phedra;
 
 namespace {
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("phedra-optimize-" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
 
 /// The figure as the metrics code computes it on the file (independently of the optimizer).
 std::optional<double> figure_of(const std::string& path, const std::string& name) {
@@ -52,7 +46,7 @@ bool check_passes(const std::string& path) { return phedra_cli({"check", path}).
 
 TEST_CASE("optimize reaches targets on the shipped presets, and the written file has the figures and passes check",
           "[optimize][cli]") {
-  TempDir dir;
+  TempDir dir("optimize");
   struct Case {
     std::string preset;
     std::vector<std::string> targets;
@@ -98,7 +92,7 @@ TEST_CASE("optimize reaches targets on the shipped presets, and the written file
 }
 
 TEST_CASE("optimize --json, key order and --vary", "[optimize][cli]") {
-  TempDir dir;
+  TempDir dir("optimize");
   const std::string out = dir / "o.json";
   const Run r = phedra_cli({"optimize", presets + "/default.json", "--target", "poisson.nu_13=-1", "-o", out, "--json"});
   REQUIRE(r.code == 0);
@@ -129,7 +123,7 @@ TEST_CASE("optimize --json, key order and --vary", "[optimize][cli]") {
 }
 
 TEST_CASE("optimize: an unreachable target exits 1, writes nothing but --closest, says what binds", "[optimize][cli]") {
-  TempDir dir;
+  TempDir dir("optimize");
   const std::string out = dir / "o.json", closest = dir / "c.json";
   const Run r = phedra_cli({"optimize", presets + "/default.json", "--target", "flexion_width>=100", "--max-seconds", "3",
                             "-o", out, "--closest", closest});
@@ -151,7 +145,7 @@ TEST_CASE("optimize: an unreachable target exits 1, writes nothing but --closest
 }
 
 TEST_CASE("optimize: one clear error per bad input, exit 2 (3 for an unwritable file), nothing written", "[optimize][cli]") {
-  TempDir dir;
+  TempDir dir("optimize");
   const std::string preset = presets + "/default.json", out = dir / "o.json";
   struct Bad {
     std::vector<std::string> args;
@@ -190,7 +184,7 @@ TEST_CASE("optimize: one clear error per bad input, exit 2 (3 for an unwritable 
 }
 
 TEST_CASE("optimize --fit: a design moved back onto points taken from another one", "[optimize][fit]") {
-  TempDir dir;
+  TempDir dir("optimize");
   // The target surface: a varied design's vertices at t*, moved rigidly (the fit aligns
   // them; a descent from the starts of best_fit: points roughly in the design's frame).
   json varied = read_json(presets + "/default.json");

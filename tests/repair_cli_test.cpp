@@ -17,6 +17,7 @@ using phedra::test::read_json;
 
 using phedra::test::phedra_cli;
 using phedra::test::Run;
+using phedra::test::TempDir;
 using Catch::Matchers::Contains;
 using json = nlohmann::json;
 namespace fs = std::filesystem;
@@ -26,17 +27,10 @@ namespace {
 /// A parallelogram tube with monotone heights: four bow-ties, repaired in well under a second.
 const std::string repairable = data + "/repairable-tube.json";
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("phedra-repair-" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-  std::string operator/(const std::string& name) const { return (path / name).string(); }
-};
-
 }  // namespace
 
 TEST_CASE("repair: the nearest buildable design, written as a preset that phedra check passes", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const std::string out = dir / "repaired.json";
   const Run r = phedra_cli({"repair", repairable, "-o", out});
   INFO(r.out << r.err);
@@ -67,7 +61,7 @@ TEST_CASE("repair: the nearest buildable design, written as a preset that phedra
 }
 
 TEST_CASE("repair --json: the changes, both reports, the search's figures", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", repairable, "-o", dir / "r.json", "--json"});
   REQUIRE(r.code == 0);
   const json j = json::parse(r.out);
@@ -90,7 +84,7 @@ TEST_CASE("repair --json: the changes, both reports, the search's figures", "[re
 }
 
 TEST_CASE("repair: an already buildable design is left alone, nothing written", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", presets + "/default.json", "-o", dir / "r.json"});
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Contains("already buildable as required: nothing to repair, nothing written"));
@@ -98,7 +92,7 @@ TEST_CASE("repair: an already buildable design is left alone, nothing written", 
 }
 
 TEST_CASE("repair: an anti-parallelogram tube cannot be repaired, by its kind (exit 1, nothing written)", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", presets + "/anti-parallelogram-tube.json", "-o", dir / "r.json"});
   CHECK(r.code == 1);
   CHECK_THAT(r.out, Contains("no buildable design found: its anti-parallelogram tube crosses itself by kind"));
@@ -107,7 +101,7 @@ TEST_CASE("repair: an anti-parallelogram tube cannot be repaired, by its kind (e
 }
 
 TEST_CASE("repair: out of time, exit 1, how close it came, the closest design on request", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", repairable, "-o", dir / "r.json", "--max-seconds", "1e-6", "--closest",
                             dir / "closest.json"});
   INFO(r.out);
@@ -120,14 +114,14 @@ TEST_CASE("repair: out of time, exit 1, how close it came, the closest design on
 }
 
 TEST_CASE("repair --require: a part of the interval around t*", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", repairable, "-o", dir / "r.json", "--require", "0.5", "--json"});
   REQUIRE(r.code == 0);
   CHECK(json::parse(r.out)["fraction"].get<double>() >= 0.5);
 }
 
 TEST_CASE("repair: bad options and presets exit 2 naming the option or field", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const std::string out = dir / "r.json";
   auto fails = [&](const std::vector<std::string>& args, const std::string& message) {
     const Run r = phedra_cli(args);
@@ -149,7 +143,7 @@ TEST_CASE("repair: bad options and presets exit 2 naming the option or field", "
 }
 
 TEST_CASE("repair --objective fields: says how many fields the nearest design changes", "[repair][cli]") {
-  TempDir dir;
+  TempDir dir("repair");
   const Run r = phedra_cli({"repair", repairable, "-o", dir / "r.json", "--objective", "fields"});
   CHECK(r.code == 0);
   CHECK_THAT(r.out, Contains("changed 1 field (the nearest design changes 1)"));
