@@ -6,6 +6,7 @@
 #include "phedra/errors.h"
 #include "support.h"
 #include "phedra/check_report.h"
+#include "phedra/thick_plates.h"
 
 #include <memory>
 #include <ostream>
@@ -19,6 +20,8 @@ struct CheckCommandOptions {
   BuildabilityOptions buildability;
   bool geometry_only = false;
   bool json = false;
+  std::optional<double> thickness;
+  std::string plate_side = "auto";
 };
 
 }  // namespace
@@ -51,6 +54,16 @@ void add_check_command(CLI::App& app, Context& context) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   add_size_bound_options(sub, options->buildability.bounds);
+  sub->add_option("--thickness", options->thickness,
+                  "Thick panels: plates this thick (model units) offset to one side of the panels, bevelled at the "
+                  "hinges; reports the thick interval where no two plates collide (inside the buildable interval), "
+                  "and which plates end it; exit 1 when the plates collide at t* (docs/design.md, \"Thick panels\")")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--plate-side", options->plate_side,
+                  "With --thickness: the side of the panels the plates lie on: front (the side the panel normals of "
+                  "the exports point to), back, or auto (the side with the wider thick interval)")
+      ->check(CLI::IsMember({"auto", "front", "back"}))
+      ->capture_default_str();
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
     const LoadedDesign loaded = load_with_preset(context, options->preset);
@@ -58,11 +71,24 @@ void add_check_command(CLI::App& app, Context& context) {
     std::optional<BuildabilityReport> buildability;
     if (!options->geometry_only) buildability = assess_buildability(loaded.design, &loaded.preset, options->buildability);
     const bool buildable = !buildability || buildability->buildable();
+    std::optional<ThickReport> thick;
+    if (options->thickness) {
+      if (options->geometry_only) throw InvalidInputError("--thickness", "the thick plates need buildability; drop --geometry-only");
+      ThickOptions thick_options;
+      thick_options.thickness = *options->thickness;
+      thick_options.side = plate_side_from_string(options->plate_side);
+      thick = check_thickness(loaded.design, *buildability, thick_options);
+    }
+    const bool thick_fits = !thick || thick->collision_free_at_t_star();
     if (options->json) {
       nlohmann::json j = report_json(report);
       j["geometry_passed"] = report.passed();
-      j["passed"] = report.passed() && buildable;
+      j["passed"] = report.passed() && buildable && thick_fits;
       if (buildability) j["buildability"] = buildability->to_json();
+      if (thick) {
+        j["thick"] = thick->to_json();
+        j["thick_interval"] = j["thick"]["thick_interval"];
+      }
       context.out << j.dump(2) << '\n';
     } else {
       const std::string& name = loaded.design.assembly.name();
@@ -78,8 +104,12 @@ void add_check_command(CLI::App& app, Context& context) {
       }
       context.out << report;
       if (buildability) context.out << *buildability;
+      if (thick) {
+        if (!thick_fits) context.out << "FAIL: the plates " << format_human(thick->thickness) << " thick collide at t*\n";
+        context.out << *thick;
+      }
     }
-    context.exit_code = report.passed() && buildable ? 0 : static_cast<int>(ExitCode::check_failed);
+    context.exit_code = report.passed() && buildable && thick_fits ? 0 : static_cast<int>(ExitCode::check_failed);
   });
 }
 

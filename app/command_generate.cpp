@@ -8,6 +8,8 @@
 #include "phedra/mesh_export.h"
 #include "phedra/number_format.h"
 #include "phedra/self_intersection.h"
+#include "phedra/solid_export.h"
+#include "phedra/thick_plates.h"
 #include "buildability_warning.h"
 #include "progress.h"
 #include "support.h"
@@ -36,6 +38,8 @@ struct GenerateOptions {
   bool cycle = false;
   bool no_self_intersection = false;
   std::optional<std::size_t> intersection_samples;  ///< default: sweep_samples_for(panels)
+  std::optional<double> thickness;
+  std::string plate_side = "auto";
 };
 
 /// --no-self-intersection: the intersection-free sub-interval around t*.
@@ -53,7 +57,7 @@ std::optional<std::pair<double, double>> free_range(Context& context, const Self
   return range;
 }
 
-enum class Format { glb, gltf, json, fold, obj, ply };
+enum class Format { glb, gltf, json, fold, obj, ply, stl, three_mf };
 
 /// A static t (--at) must lie in the intersection-free interval when one is asked for.
 void check_in_range(const std::optional<double>& t, const std::optional<std::pair<double, double>>& range) {
@@ -70,7 +74,10 @@ Format format_of(const std::string& path) {
   if (ext == ".fold") return Format::fold;
   if (ext == ".obj") return Format::obj;
   if (ext == ".ply") return Format::ply;
-  throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf, .fold, .obj, .ply or .json)");
+  if (ext == ".stl") return Format::stl;
+  if (ext == ".3mf") return Format::three_mf;
+  throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .glb, .gltf, .fold, .obj, .ply, .json, or with "
+                                    "--thickness .stl, .3mf, .obj)");
 }
 
 void write_gltf(Context& context, const Design& design, const GenerateOptions& o, bool binary,
@@ -151,6 +158,37 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   }
 }
 
+/// --thickness: every plate a closed solid at t (STL, 3MF, OBJ).
+void write_solids(Context& context, const Design& design, const GenerateOptions& o, const BuildabilityReport& buildability,
+                  double t) {
+  ThickOptions options;
+  options.thickness = *o.thickness;
+  options.side = plate_side_from_string(o.plate_side);
+  const ThickReport report = check_thickness(design, buildability, options);
+  const ThickPlates plates = thick_plates(design, report);
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < plates.plates(); ++k) names.push_back("plate_" + std::to_string(plates.panel(k)));
+  const std::vector<Solid> solids = plates.solids(plates.positions(t));
+  double volume = 0.0;
+  for (const Solid& solid : solids) volume += solid.volume();
+  const std::string ext = std::filesystem::path(o.output).extension().string();
+  const std::string comment = "plates " + format_human(report.thickness) + " thick (" + to_string(report.side) +
+                              " side) at t = " + format_human(t) + "; phedra buildability: " + buildability.summary();
+  emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
+  context.out << "wrote " << o.output << ": " << solids.size() << " plates " << format_human(report.thickness)
+              << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
+              << format_human(t) << ", volume " << format_human(volume) << " (thickness x panel area "
+              << format_human(report.thickness * report.panel_area) << ")\n";
+  if (report.at_t_star) {
+    context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << format_human(report.thickness)
+                << " names them)\n";
+  } else if (t < report.thick_lower || t > report.thick_upper) {
+    context.err << "phedra: warning: t = " << format_human(t) << " is outside the thick interval ["
+                << format_human(report.thick_lower) << ", " << format_human(report.thick_upper)
+                << "]: plates collide there (phedra check --thickness)\n";
+  }
+}
+
 }  // namespace
 
 void add_generate_command(CLI::App& app, Context& context) {
@@ -160,7 +198,9 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "glTF (.glb, .gltf), FOLD with frames (.fold), the motion JSON (.json), or a static OBJ/PLY mesh "
                   "(docs/formats.md)");
   add_preset_argument(sub, o->preset);
-  sub->add_option("-o,--output", o->output, "Output file: .glb, .gltf, .fold, .json, .obj or .ply")->required();
+  sub->add_option("-o,--output", o->output,
+                  "Output file: .glb, .gltf, .fold, .json, .obj or .ply; with --thickness .stl, .3mf or .obj")
+      ->required();
   sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
@@ -195,6 +235,16 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "Samples from t* to each limit for the collision sweep (--no-self-intersection and the buildability "
                   "warning); default 200, fewer above 2000 panels (at least 24)")
       ->check(CLI::Range(1, 1000000));
+  sub->add_option("--thickness", o->thickness,
+                  "Thick plates (model units) offset to one side of the panels, bevelled at the hinges, written as "
+                  "solids at --at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate "
+                  "(docs/design.md, \"Thick panels\")")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--plate-side", o->plate_side,
+                  "With --thickness: front (the side the exported panel normals point to), back, or auto (the side "
+                  "with the wider thick interval)")
+      ->check(CLI::IsMember({"auto", "front", "back"}))
+      ->capture_default_str();
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {
@@ -207,6 +257,14 @@ void add_generate_command(CLI::App& app, Context& context) {
     if (o->cycle && o->no_self_intersection) {
       throw InvalidInputError("--no-self-intersection", "--cycle runs through the flexion limits; it cannot be "
                                                         "restricted to the intersection-free interval");
+    }
+    const bool solids = format == Format::stl || format == Format::three_mf || (format == Format::obj && o->thickness);
+    if (o->thickness && !solids) {
+      throw InvalidInputError("--thickness", "thick plates are written as solids: .stl, .3mf or .obj");
+    }
+    if (!o->thickness && (format == Format::stl || format == Format::three_mf)) {
+      throw InvalidInputError("--thickness", "an " + std::string(format == Format::stl ? "STL" : "3MF") +
+                                                 " file holds solids: give the plate thickness (--thickness T)");
     }
     const BuildabilityReport buildability = assess_for_output(design, o->intersection_samples);
     const std::optional<std::pair<double, double>> range = free_range(context, buildability.motion, *o);
@@ -222,6 +280,15 @@ void add_generate_command(CLI::App& app, Context& context) {
         warn(range ? range->first : interval.lower.t, range ? range->second : interval.upper.t);
       }
       write_gltf(context, design, *o, format == Format::glb, range, buildability, loaded.preset);
+      return;
+    }
+    if (solids) {
+      const double t = o->static_t.value_or(design.assembly.t_star());
+      const FlexionInterval& f = design.assembly.flexion_interval();
+      if (!f.contains(t)) throw OutOfIntervalError(t, f.lower.t, f.upper.t);
+      check_in_range(t, range);
+      warn(t, t);
+      write_solids(context, design, *o, buildability, t);
       return;
     }
     if (format == Format::obj || format == Format::ply) {

@@ -14,11 +14,11 @@ set -euo pipefail
 
 packages=(
   g++ cmake ninja-build pkg-config
-  libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
+  zlib1g-dev libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
   catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
-  blender python3-numpy
+  blender python3-numpy admesh
   python3-dev python3-pybind11 python3-pytest python3-matplotlib
 )
 

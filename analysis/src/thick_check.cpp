@@ -1,0 +1,183 @@
+// check_thickness: the collision-free interval of thick plates (thick_plates.h).
+
+#include "phedra/thick_plates.h"
+
+#include "phedra/errors.h"
+#include "phedra/number_format.h"
+
+#include <cmath>
+#include <optional>
+#include <numbers>
+#include <ostream>
+
+namespace phedra {
+namespace {
+
+ThickLimit limit_of(const ThickPlates& plates, const ThickPlates::Contact& c, double t) {
+  return {c.hinge ? ThickLimit::Kind::hinge : ThickLimit::Kind::plates, plates.panel_id(c.a), plates.panel_id(c.b), t};
+}
+
+/// Walks from t* to `end` (the thin free end); the first contact, bisected.
+std::optional<ThickLimit> sweep(const ThickPlates& plates, double end, std::size_t samples,
+                                const std::vector<double>& at_star, double& free_end) {
+  const Assembly& assembly = plates.design().assembly;
+  const double t_star = assembly.t_star();
+  const double width = assembly.flexion_interval().width();
+  free_end = t_star;
+  if (end == t_star) return std::nullopt;
+  std::vector<double> good_openings = at_star, next;
+  double good = t_star;
+  for (std::size_t k = 1; k <= samples; ++k) {
+    const double s = 1.0 - static_cast<double>(k) / static_cast<double>(samples);
+    const double t = k >= samples ? end : t_star + (end - t_star) * (1.0 - s * s);
+    std::optional<ThickPlates::Contact> hit = plates.collision(plates.positions(t), good_openings, next);
+    if (!hit) {
+      good = t;
+      good_openings = next;
+      free_end = t;
+      continue;
+    }
+    double bad = t;
+    for (int i = 0; i < 80 && std::abs(bad - good) > 1e-12 * width; ++i) {
+      const double mid = 0.5 * (good + bad);
+      const std::optional<ThickPlates::Contact> h = plates.collision(plates.positions(mid), good_openings, next);
+      if (h) {
+        bad = mid;
+        hit = h;
+      } else {
+        good = mid;
+        good_openings = next;
+      }
+    }
+    free_end = good;
+    return limit_of(plates, *hit, good);
+  }
+  return std::nullopt;
+}
+
+ThickReport check_side(const Design& design, const BuildabilityReport& thin, const ThickOptions& options, PlateSide side,
+                       std::pair<double, double> free) {
+  const Assembly& assembly = design.assembly;
+  ThickReport r;
+  r.thickness = options.thickness;
+  r.side = side;
+  r.t_star = assembly.t_star();
+  r.t_lambda = assembly.flexion_interval().lower.t;
+  r.t_mu = assembly.flexion_interval().upper.t;
+  const std::pair<double, double> bevel = options.bevel_range.value_or(free);
+  r.bevel_lower = bevel.first;
+  r.bevel_upper = bevel.second;
+  r.members = assembly.member_count();
+  const ThickPlates plates(design, options.thickness, side, bevel);
+  r.plates = plates.plates();
+  r.smallest_bevel = plates.smallest_bevel();
+  r.panel_area = plates.panel_area();
+  const Points x = plates.positions(r.t_star);
+  for (const Solid& s : plates.solids(x)) r.volume += s.volume();
+  const std::vector<double> at_star = plates.openings(x);
+  std::vector<double> next;
+  r.thick_lower = r.thick_upper = r.t_star;
+  if (const auto hit = plates.collision(x, at_star, next)) {
+    r.at_t_star = limit_of(plates, *hit, r.t_star);
+    return r;
+  }
+  r.samples = 2 * options.samples_per_side + 1;
+  r.lower = sweep(plates, free.first, options.samples_per_side, at_star, r.thick_lower);
+  r.upper = sweep(plates, free.second, options.samples_per_side, at_star, r.thick_upper);
+  // Reaching the thin free end: what ends that (if it is not the flexion limit) ends this too.
+  auto thin_limit = [&](const std::optional<Collision>& c, double end) -> std::optional<ThickLimit> {
+    if (!c) return std::nullopt;
+    return ThickLimit{ThickLimit::Kind::thin, c->a, c->b, end};
+  };
+  if (!r.lower) r.lower = thin_limit(thin.motion.lower, free.first);
+  if (!r.upper) r.upper = thin_limit(thin.motion.upper, free.second);
+  return r;
+}
+
+double width_of(const ThickReport& r) { return r.at_t_star ? -1.0 : r.thick_upper - r.thick_lower; }
+
+std::string describe_limit(const ThickLimit& l, bool several) {
+  const std::string pair = describe(l.a, several) + " and " + describe(l.b, several);
+  switch (l.kind) {
+    case ThickLimit::Kind::hinge:
+      return "the bevels of " + pair + " meet at their hinge (the hinge closes further on the plate side than "
+             "the bevels allow)";
+    case ThickLimit::Kind::plates: return "the plates of " + pair + " collide";
+    case ThickLimit::Kind::thin: return "the zero-thickness panels already collide there (" + pair + ")";
+  }
+  return pair;
+}
+
+nlohmann::json limit_json(const std::optional<ThickLimit>& l) {
+  if (!l) return nullptr;
+  const char* kind = l->kind == ThickLimit::Kind::hinge ? "hinge" : l->kind == ThickLimit::Kind::plates ? "plates" : "thin";
+  return {{"kind", kind}, {"t", l->t}, {"panels", {l->a.face, l->b.face}}, {"text", describe_limit(*l, true)}};
+}
+
+}  // namespace
+
+ThickReport check_thickness(const Design& design, const BuildabilityReport& thin, const ThickOptions& options) {
+  const std::optional<std::pair<double, double>> free = thin.interval();
+  if (!free) {
+    throw InvalidInputError("--thickness", "the design is not buildable at t* without thickness (" + thin.summary() +
+                                               "): there are no panels to thicken");
+  }
+  if (options.side != PlateSide::automatic) return check_side(design, thin, options, options.side, *free);
+  // A side whose plates do not fit (a top face vanishes) leaves the other one.
+  std::optional<ThickReport> front, back;
+  std::optional<InvalidInputError> misfit;
+  for (const PlateSide side : {PlateSide::front, PlateSide::back}) {
+    try {
+      (side == PlateSide::front ? front : back) = check_side(design, thin, options, side, *free);
+    } catch (const InvalidInputError& e) {
+      if (!misfit) misfit = e;
+    }
+  }
+  if (!front && !back) throw *misfit;
+  if (!front) return *back;
+  if (!back) return *front;
+  return width_of(*back) > width_of(*front) ? *back : *front;
+}
+
+ThickPlates thick_plates(const Design& design, const ThickReport& report) {
+  return ThickPlates(design, report.thickness, report.side, {report.bevel_lower, report.bevel_upper});
+}
+
+nlohmann::json ThickReport::to_json() const {
+  nlohmann::json j = {{"thickness", thickness},
+                      {"side", to_string(side)},
+                      {"plates", plates},
+                      {"bevel_range", {bevel_lower, bevel_upper}},
+                      {"smallest_bevel_degrees", smallest_bevel * 180.0 / std::numbers::pi},
+                      {"volume", volume},
+                      {"panel_area", panel_area},
+                      {"samples", samples},
+                      {"at_t_star", limit_json(at_t_star)},
+                      {"lower", limit_json(lower)},
+                      {"upper", limit_json(upper)}};
+  j["thick_interval"] = at_t_star ? nlohmann::json(nullptr) : nlohmann::json::array({thick_lower, thick_upper});
+  return j;
+}
+
+std::ostream& operator<<(std::ostream& out, const ThickReport& r) {
+  const bool several = r.members > 1;
+  out << "thick plates: " << format_human(r.thickness) << " thick on the " << to_string(r.side) << " side, "
+      << r.plates << " plates, bevels cut for [" << format_human(r.bevel_lower) << ", " << format_human(r.bevel_upper)
+      << "] (smallest " << format_human(r.smallest_bevel * 180.0 / std::numbers::pi) << " degrees)\n";
+  out << "  volume " << format_human(r.volume) << " (thickness x panel area " << format_human(r.thickness * r.panel_area)
+      << ")\n";
+  if (r.at_t_star) {
+    out << "  at t* = " << format_human(r.t_star) << ": " << describe_limit(*r.at_t_star, several) << '\n';
+    return out;
+  }
+  const bool whole = !r.lower && !r.upper && r.thick_lower == r.t_lambda && r.thick_upper == r.t_mu;
+  out << "  thick interval [" << format_human(r.thick_lower) << ", " << format_human(r.thick_upper) << "]"
+      << (whole ? ": the whole flexion interval" : " of the flexion interval [" + format_human(r.t_lambda) + ", " +
+                                                      format_human(r.t_mu) + "]")
+      << '\n';
+  if (r.lower) out << "  below t = " << format_human(r.lower->t) << ": " << describe_limit(*r.lower, several) << '\n';
+  if (r.upper) out << "  above t = " << format_human(r.upper->t) << ": " << describe_limit(*r.upper, several) << '\n';
+  return out;
+}
+
+}  // namespace phedra
