@@ -11,14 +11,16 @@
 #include <ostream>
 
 namespace phedra {
-namespace {
+// Named, not anonymous: the unity builds (CMake's, the WebAssembly one) put this
+// file in one translation unit with self_intersection.cpp.
+namespace thick_detail {
 
 ThickLimit limit_of(const ThickPlates& plates, const ThickPlates::Contact& c, double t) {
   return {c.hinge ? ThickLimit::Kind::hinge : ThickLimit::Kind::plates, plates.panel_id(c.a), plates.panel_id(c.b), t};
 }
 
 /// Walks from t* to `end` (the thin free end); the first contact, bisected.
-std::optional<ThickLimit> sweep(const ThickPlates& plates, double end, std::size_t samples,
+std::optional<ThickLimit> sweep_plates(const ThickPlates& plates, double end, std::size_t samples,
                                 const std::vector<double>& at_star, double& free_end) {
   const Assembly& assembly = plates.design().assembly;
   const double t_star = assembly.t_star();
@@ -82,8 +84,8 @@ ThickReport check_side(const Design& design, const BuildabilityReport& thin, con
     return r;
   }
   r.samples = 2 * options.samples_per_side + 1;
-  r.lower = sweep(plates, free.first, options.samples_per_side, at_star, r.thick_lower);
-  r.upper = sweep(plates, free.second, options.samples_per_side, at_star, r.thick_upper);
+  r.lower = sweep_plates(plates, free.first, options.samples_per_side, at_star, r.thick_lower);
+  r.upper = sweep_plates(plates, free.second, options.samples_per_side, at_star, r.thick_upper);
   // Reaching the thin free end: what ends that (if it is not the flexion limit) ends this too.
   auto thin_limit = [&](const std::optional<Collision>& c, double end) -> std::optional<ThickLimit> {
     if (!c) return std::nullopt;
@@ -114,7 +116,8 @@ nlohmann::json limit_json(const std::optional<ThickLimit>& l) {
   return {{"kind", kind}, {"t", l->t}, {"panels", {l->a.face, l->b.face}}, {"text", describe_limit(*l, true)}};
 }
 
-}  // namespace
+}  // namespace thick_detail
+using namespace thick_detail;
 
 ThickReport check_thickness(const Design& design, const BuildabilityReport& thin, const ThickOptions& options) {
   const std::optional<std::pair<double, double>> free = thin.interval();

@@ -14,13 +14,15 @@
 #include <numbers>
 
 namespace phedra {
-namespace {
+// Named, not anonymous: the unity builds (CMake's, the WebAssembly one) put this
+// file in one translation unit with self_intersection.cpp.
+namespace thick_detail {
 
-constexpr double two_pi = 2.0 * std::numbers::pi;
-constexpr double half_pi = 0.5 * std::numbers::pi;
+constexpr double full_turn = 2.0 * std::numbers::pi;
+constexpr double quarter_turn = 0.5 * std::numbers::pi;
 /// A bevel's top inset from its edge is at most this fraction of the panel's depth behind the edge.
 constexpr double max_inset_fraction = 0.25;
-constexpr double angle_tolerance = 1e-9;
+constexpr double bevel_angle_tolerance = 1e-9;
 
 /// The right-handed area normal of a polygon (Newell), not normalised.
 Vec3 area_vector(const std::vector<Vec3>& p) {
@@ -37,9 +39,9 @@ double crowded(double from, double to, std::size_t k, std::size_t samples) {
 
 /// An opening continued from `previous` (the turn between the two is under pi).
 double continued(double raw, double previous) {
-  double step = raw - std::fmod(std::fmod(previous, two_pi) + two_pi, two_pi);
-  if (step > std::numbers::pi) step -= two_pi;
-  if (step < -std::numbers::pi) step += two_pi;
+  double step = raw - std::fmod(std::fmod(previous, full_turn) + full_turn, full_turn);
+  if (step > std::numbers::pi) step -= full_turn;
+  if (step < -std::numbers::pi) step += full_turn;
   return previous + step;
 }
 
@@ -95,7 +97,8 @@ void hull_axes(const std::vector<Vec3>& p, double eps, std::vector<Vec3>& normal
   }
 }
 
-}  // namespace
+}  // namespace thick_detail
+using namespace thick_detail;
 
 std::string to_string(PlateSide side) {
   switch (side) {
@@ -185,7 +188,7 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
   std::vector<double> smallest(hinges_.size(), std::numeric_limits<double>::infinity());
   const std::vector<double> at_star = openings(x0);
   // The floor of a bevel never goes above what t* itself allows.
-  for (Plate& p : plates_) p.ceiling.assign(p.corners.size(), half_pi);
+  for (Plate& p : plates_) p.ceiling.assign(p.corners.size(), quarter_turn);
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const HingePair& h = hinges_[k];
     double& ceiling = plates_[h.a].ceiling[h.edge_a];
@@ -204,7 +207,7 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
       }
     }
   }
-  for (Plate& p : plates_) p.bevel.assign(p.corners.size(), half_pi);
+  for (Plate& p : plates_) p.bevel.assign(p.corners.size(), quarter_turn);
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const HingePair& h = hinges_[k];
     const double bound = std::max(0.0, h.facing ? 0.5 * smallest[k] : smallest[k]);
@@ -213,7 +216,7 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
   }
 
   // The plates' solids at t*, then in their frames.
-  smallest_bevel_ = half_pi;
+  smallest_bevel_ = quarter_turn;
   for (std::size_t k = 0; k < plates_.size(); ++k) {
     Plate& plate = plates_[k];
     const std::vector<Vec3>& p = plate.bottom;
@@ -322,7 +325,7 @@ double ThickPlates::pair_opening(const HingePair& h, const Points& x) const {
   const Vec3 e_b = (cb[(h.edge_b + 1) % nb] - cb[h.edge_b]).normalized();
   const Vec3 u_b = normal_b.cross(e_b);  // into b
   double phi = std::atan2(m_a.dot(u_b), u_a.dot(u_b));
-  if (phi < 0.0) phi += two_pi;
+  if (phi < 0.0) phi += full_turn;
   return phi;
 }
 
@@ -384,7 +387,7 @@ std::optional<ThickPlates::Contact> ThickPlates::collision(const Points& x, cons
     next[k] = continued(raw[k], previous[k]);
     const HingePair& h = hinges_[k];
     const double need = plates_[h.a].bevel[h.edge_a] + (h.facing ? plates_[h.b].bevel[h.edge_b] : 0.0);
-    if (!first && next[k] < need - angle_tolerance) first = Contact{h.a, h.b, true, (need - next[k]) * thickness_};
+    if (!first && next[k] < need - bevel_angle_tolerance) first = Contact{h.a, h.b, true, (need - next[k]) * thickness_};
   }
   if (first) return first;
   // Separate plates: convex pieces, boxes as the broad phase, SAT as the narrow one.
