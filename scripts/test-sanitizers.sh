@@ -16,5 +16,5 @@ cmake --build build-sanitize --parallel "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-clients='^(gltf_in_real_clients|gltf_in_blender|viewer_in_headless_chromium|build_wasm|wasm_core_in_node|designer_.*)$'
+clients='^(gltf_in_real_clients|gltf_in_blender|stl_in_blender|viewer_in_headless_chromium|build_wasm|wasm_core_in_node|designer_.*)$'
 ctest --test-dir build-sanitize --output-on-failure --parallel "$(nproc)" -E "$clients|bench --quick"
