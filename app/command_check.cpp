@@ -77,6 +77,7 @@ void add_check_command(CLI::App& app, Context& context) {
       ThickOptions thick_options;
       thick_options.thickness = *options->thickness;
       thick_options.side = plate_side_from_string(options->plate_side);
+      thick_options.samples_per_side = options->buildability.sweep.samples_per_side;  // as the zero-thickness sweep
       thick = check_thickness(loaded.design, *buildability, thick_options);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();

@@ -83,9 +83,10 @@ ThickReport check_side(const Design& design, const BuildabilityReport& thin, con
     r.at_t_star = limit_of(plates, *hit, r.t_star);
     return r;
   }
-  r.samples = 2 * options.samples_per_side + 1;
-  r.lower = sweep_plates(plates, free.first, options.samples_per_side, at_star, r.thick_lower);
-  r.upper = sweep_plates(plates, free.second, options.samples_per_side, at_star, r.thick_upper);
+  const std::size_t samples = options.samples_per_side ? options.samples_per_side : sweep_samples_for(plates.plates());
+  r.samples = 2 * samples + 1;
+  r.lower = sweep_plates(plates, free.first, samples, at_star, r.thick_lower);
+  r.upper = sweep_plates(plates, free.second, samples, at_star, r.thick_upper);
   // Reaching the thin free end: what ends that (if it is not the flexion limit) ends this too.
   auto thin_limit = [&](const std::optional<Collision>& c, double end) -> std::optional<ThickLimit> {
     if (!c) return std::nullopt;

@@ -48,8 +48,9 @@ struct ThickOptions {
   PlateSide side = PlateSide::automatic;
   /// The range the bevels are cut for (default: the zero-thickness buildable interval).
   std::optional<std::pair<double, double>> bevel_range;
-  /// Samples from t* to each end of the sweep (crowding towards the end, as the thin sweep).
-  std::size_t samples_per_side = 200;
+  /// Samples from t* to each end of the sweep (crowding towards the end, as the
+  /// thin sweep); 0: sweep_samples_for(plates), 200 up to 2000 plates.
+  std::size_t samples_per_side = 0;
   /// Penetration that counts, relative to the model size (touching is not a collision).
   double relative_tolerance = 1e-9;
 };
