@@ -20,6 +20,9 @@ struct OutlinesCommandOptions {
   std::string pieces = "strips";
   std::string page = "a4";
   double scale = 0.0;  ///< 0: from --model-size
+  std::optional<double> thickness_mm;
+  double kerf_mm = 0.0;
+  std::string plate_side = "auto";
   CutSheetOptions sheets;
 };
 
@@ -64,6 +67,18 @@ void add_outlines_command(CLI::App& app, Context& context) {
   sub->add_option("--tab-depth", o->sheets.tab_depth, "Tab depth relative to its seam's length, in (0, 0.5); at "
                                                       "most 6 mm")
       ->capture_default_str();
+  sub->add_option("--thickness-mm", o->thickness_mm,
+                   "Thick plates cut from sheet material this thick (mm on the sheets' scale): one piece a plate, "
+                   "its cut outline inside the bevelled plate of phedra check --thickness, hinge lines, pieces "
+                   "numbered in assembly order, an assembly page, the material used (docs/cli.md)")
+      ->check(CLI::PositiveNumber);
+  sub->add_option("--kerf", o->kerf_mm, "With --thickness-mm: the width (mm) the laser or saw burns away; cut paths "
+                                        "run half of it outside each piece")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sub->add_option("--plate-side", o->plate_side, "With --thickness-mm: front, back or auto (as phedra check)")
+      ->check(CLI::IsMember({"auto", "front", "back"}))
+      ->capture_default_str();
   sub->callback([o, scale, &context] {
     const std::string ext = std::filesystem::path(o->output).extension().string();
     if (ext != ".svg" && ext != ".dxf" && ext != ".pdf" && ext != ".png") {
@@ -73,6 +88,11 @@ void add_outlines_command(CLI::App& app, Context& context) {
     o->sheets.page = page_size_from_string(o->page);
     if (scale->count() > 0) o->sheets.scale = o->scale;
     if (!(o->sheets.model_mm > 0.0)) throw InvalidInputError("--model-size", "must be a positive number of mm");
+    if (o->thickness_mm) {
+      o->sheets.plates = PlateCut{*o->thickness_mm, o->kerf_mm, plate_side_from_string(o->plate_side)};
+    } else if (o->kerf_mm != 0.0) {
+      throw InvalidInputError("--kerf", "a kerf is for plates cut from sheet material: give --thickness-mm too");
+    }
     const Design design = load(context, o->preset);
     const CutSheets sheets = cut_sheets(design, o->sheets);
     // Everything is drawn before anything is written.
@@ -94,9 +114,28 @@ void add_outlines_command(CLI::App& app, Context& context) {
     context.out << "wrote " << (files.size() == 1 ? o->output : files.front().first + " ... " + files.back().first)
                 << ": " << sheets.pages.size() << (sheets.pages.size() == 1 ? " page" : " pages") << " of "
                 << six(sheets.page.x()) << " x " << six(sheets.page.y()) << " mm, " << sheets.pieces.size()
-                << " pieces (" << to_string(sheets.mode) << ") of " << panels << " panels, " << sheets.folds
-                << " fold lines, " << sheets.seams << " seams to glue (" << sheets.tabs << " tabs), scale "
-                << six(sheets.scale) << " mm per model unit\n";
+                << " pieces (" << (sheets.thick ? std::string("plates") : to_string(sheets.mode)) << ") of " << panels
+                << " panels, "
+                << (sheets.thick ? std::to_string(sheets.seams) + " hinges"
+                                 : std::to_string(sheets.folds) + " fold lines, " + std::to_string(sheets.seams) +
+                                       " seams to glue (" + std::to_string(sheets.tabs) + " tabs)")
+                << ", scale " << six(sheets.scale) << " mm per model unit\n";
+    if (sheets.thick) {
+      const ThickReport& r = *sheets.thick;
+      context.out << "plates " << six(sheets.thickness_mm) << " mm thick (" << six(r.thickness) << " model units) on the "
+                  << to_string(r.side) << " side, kerf " << six(sheets.kerf_mm) << " mm; assembly on page "
+                  << sheets.piece_pages + 1 << "; material: " << sheets.piece_pages << " sheet"
+                  << (sheets.piece_pages == 1 ? "" : "s") << " of " << six(sheets.page.x()) << " x " << six(sheets.page.y())
+                  << " mm, " << six(sheets.cut_area_mm2 / 100.0) << " cm^2 of pieces ("
+                  << six(100.0 * sheets.material_used()) << " % of the sheets)\n";
+      if (r.at_t_star) {
+        context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << six(r.thickness)
+                    << " names them)\n";
+      } else {
+        context.out << "thick interval [" << six(r.thick_lower) << ", " << six(r.thick_upper) << "] of [" << six(r.t_lambda)
+                    << ", " << six(r.t_mu) << "]\n";
+      }
+    }
     if (sheets.untabbed_seams > 0) {
       context.out << "note: " << sheets.untabbed_seams << " seams have no room for a tab on either side: "
                   << "glue them with tape\n";

@@ -4,6 +4,8 @@
 
 #include "phedra/box_tree.h"
 #include "phedra/buildability.h"
+#include "phedra/cut_sheets.h"
+#include "phedra/sheet_geometry.h"
 #include "support/cli_run.h"
 #include "phedra/errors.h"
 #include "phedra/design_preset.h"
@@ -294,4 +296,83 @@ TEST_CASE("thick plates: errors", "[thick][cli]") {
   fails({"check", tube, "--thickness", "0.1", "--geometry-only"}, "drop --geometry-only");
   CHECK(fs::is_empty(dir.path));
   CHECK_THROWS_AS(plate_side_from_string("sideways"), InvalidInputError);
+}
+
+TEST_CASE("thick plates on cut sheets: numbered plates inside their panels, kerf, assembly pages, material", "[thick][sheets]") {
+  const Design design = load_design(presets + "/grid-3x3.json");
+  CutSheetOptions options;
+  options.model_mm = 400.0;
+  options.plates = PlateCut{3.0, 0.2, PlateSide::automatic};
+  const CutSheets sheets = cut_sheets(design, options);
+  REQUIRE(sheets.thick);
+  CHECK(sheets.thick->thickness == Approx(3.0 / sheets.scale));
+  CHECK(sheets.pieces.size() == 216);
+  CHECK(sheets.piece_pages >= 1);
+  CHECK(sheets.pages.size() > sheets.piece_pages);  // the assembly pages follow
+  CHECK(sheets.material_used() > 0.1);
+  CHECK(sheets.material_used() < 1.0);
+  double area = 0.0;
+  for (std::size_t k = 0; k < sheets.pieces.size(); ++k) {
+    const Piece& piece = sheets.pieces[k];
+    INFO("piece " << k);
+    CHECK(piece.number == k + 1);
+    REQUIRE(piece.cut);
+    REQUIRE(piece.panels.size() == 1);
+    area += 0.5 * std::abs(signed_area2(*piece.cut));
+    // The cut runs half the kerf outside the plate's top face, which lies inside the panel:
+    // every cut corner within the panel grown by half the kerf (and a rounding margin).
+    Polygon2 panel = piece.panels[0].outline;
+    if (signed_area2(panel) < 0.0) std::reverse(panel.begin(), panel.end());
+    for (const Vec2& c : *piece.cut) {
+      for (std::size_t e = 0; e < panel.size(); ++e) {
+        const Vec2 a = panel[e], b = panel[(e + 1) % panel.size()];
+        if ((b - a).norm() < 1e-9) continue;
+        CHECK(cross((b - a).normalized(), c - a) >= -0.1 - 1e-6);  // at most half the kerf outside an edge
+      }
+    }
+    // Its name: the number and the panel.
+    const std::string name = std::to_string(piece.number) + " P" + std::to_string(piece.panels[0].panel);
+    CHECK(std::any_of(piece.labels.begin(), piece.labels.end(), [&](const SheetText& t) { return t.text == name; }));
+  }
+  CHECK(area == Approx(sheets.cut_area_mm2));
+  // The assembly pages name every piece, the first as the start.
+  std::string assembly;
+  for (std::size_t p = sheets.piece_pages; p < sheets.pages.size(); ++p) {
+    for (const SheetText& t : sheets.pages[p].texts) assembly += t.text + "\n";
+  }
+  CHECK_THAT(assembly, Contains("1  P0, page 1: start here"));
+  CHECK_THAT(assembly, Contains("216  P"));
+  CHECK_THAT(assembly, Contains("hinge to 1 (S"));
+  // Every hinge edge drawn as a hinge line; a kerf of 0 puts the cut on the top face.
+  std::size_t hinge_lines = 0;
+  for (std::size_t p = 0; p < sheets.piece_pages; ++p) {
+    for (const SheetLine& l : sheets.pages[p].lines) hinge_lines += l.style == LineStyle::hinge ? 1 : 0;
+  }
+  std::size_t sides = 0;
+  for (const Piece& piece : sheets.pieces) sides += piece.seams.size();
+  CHECK(hinge_lines == sides + sheets.piece_pages);  // and one in each page's legend
+  options.plates->kerf_mm = 0.0;
+  const CutSheets exact = cut_sheets(design, options);
+  CHECK(exact.cut_area_mm2 < sheets.cut_area_mm2);
+}
+
+TEST_CASE("thick plates on cut sheets: the command, its files and its errors", "[thick][sheets][cli]") {
+  test::TempDir dir("thick-sheets");
+  const std::string tube = presets + "/parallelogram-tube.json";
+  const test::Run run = test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "--kerf", "0.15", "-o", (dir.path / "t.pdf").string()});
+  REQUIRE(run.code == 0);
+  CHECK_THAT(run.out, Contains("40 pieces (plates) of 40 panels, 76 hinges"));
+  CHECK_THAT(run.out, Contains("material: 1 sheet of 210 x 297 mm"));
+  CHECK_THAT(run.out, Contains("assembly on page 2"));
+  CHECK(read_file(dir.path / "t.pdf").rfind("%PDF", 0) == 0);
+  REQUIRE(test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "-o", (dir.path / "t.dxf").string()}).code == 0);
+  CHECK_THAT(read_file(dir.path / "t.dxf"), Contains("\nHINGE\n"));
+  const test::Run kerf = test::phedra_cli({"outlines", tube, "--kerf", "0.2", "-o", (dir.path / "k.pdf").string()});
+  CHECK(kerf.code == 2);
+  CHECK_THAT(kerf.err, Contains("--kerf: a kerf is for plates cut from sheet material"));
+  CHECK(test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "--kerf", "-1", "-o", (dir.path / "k.pdf").string()}).code == 2);
+  const test::Run thick = test::phedra_cli({"outlines", tube, "--thickness-mm", "80", "-o", (dir.path / "k.pdf").string()});
+  CHECK(thick.code == 2);
+  CHECK_THAT(thick.err, Contains("does not fit on panel"));
+  CHECK_FALSE(fs::exists(dir.path / "k.pdf"));
 }

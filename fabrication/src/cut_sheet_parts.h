@@ -16,6 +16,16 @@ std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& op
 /// Fills piece.labels: S<k> along every seam side, then P<k> inside every panel.
 void place_labels(Piece& piece);
 
+/// Single-panel pieces (PieceMode::panels, no tabs) turned into plates: the cut
+/// outline (the plate's top face at `scale` mm a model unit, grown by half of
+/// `kerf_mm`), labels inside it (the piece's number and panel, the seams along
+/// the hinge edges). Pieces whose panel has no plate stay as they are.
+void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double scale, double kerf_mm);
+
+/// A page listing the assembly: every piece, the earlier pieces it is hinged to
+/// and along which seam, how the hinges go on.
+std::vector<SheetPage> assembly_pages(const CutSheets& sheets);
+
 /// The largest label box (capital height at most max_height) inside `outline`,
 /// along edge `edge` (from corner edge to the next; reading upright either
 /// way) or, without edge, centred on the panel; clear of `avoid`. Nothing if

@@ -19,6 +19,7 @@ const char* dxf_layer(LineStyle style) {
     case LineStyle::tab_fold: return "TAB_FOLD";
     case LineStyle::frame: return "FRAME";
     case LineStyle::axis: return "AXIS";
+    case LineStyle::hinge: return "HINGE";
   }
   return "0";
 }
@@ -38,9 +39,9 @@ std::string cut_sheets_pdf(const CutSheets& s) { return pages_pdf(s.pages, s.pag
 std::string cut_sheets_dxf(const CutSheets& s) {
   std::ostringstream dxf;
   dxf << "0\nSECTION\n2\nHEADER\n9\n$ACADVER\n1\nAC1009\n9\n$INSUNITS\n70\n4\n0\nENDSEC\n";
-  dxf << "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n7\n";
+  dxf << "0\nSECTION\n2\nTABLES\n0\nTABLE\n2\nLAYER\n70\n8\n";
   for (const auto& [layer, colour] : {std::pair{"CUT", 7}, {"MOUNTAIN", 1}, {"VALLEY", 5}, {"FLAT", 8},
-                                      {"TAB_FOLD", 8}, {"FRAME", 9}, {"LABELS", 3}}) {
+                                      {"TAB_FOLD", 8}, {"FRAME", 9}, {"LABELS", 3}, {"HINGE", 6}}) {
     dxf << "0\nLAYER\n2\n" << layer << "\n70\n0\n62\n" << colour << "\n6\nCONTINUOUS\n";
   }
   dxf << "0\nENDTAB\n0\nENDSEC\n0\nSECTION\n2\nENTITIES\n";

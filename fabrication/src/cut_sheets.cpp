@@ -67,6 +67,9 @@ Placement fitting(const std::vector<Vec2>& points, const Box2& content) {
 }
 
 void place(Piece& piece, const Placement& at) {
+  if (piece.cut) {
+    for (Vec2& c : *piece.cut) c = at.map(c);
+  }
   for (PiecePanel& p : piece.panels) {
     for (Vec2& c : p.outline) c = at.map(c);
   }
@@ -89,9 +92,21 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
                 bool any_seam_on_fold, std::size_t left_out) {
   const double m = 10.0, top = s.page.y() - m, right = s.page.x() - m;
   add_text(page, s.name + " - cut sheet " + std::to_string(k + 1) + " of " + std::to_string(s.pages.size()) + " (" +
-                     to_string(s.mode) + ")",
+                     (s.thick ? std::string("plates") : to_string(s.mode)) + ")",
            Vec2(m, top - 4.0), 4.0, TextRole::title);
   Legend legend(page, m, right, top - 11.0);
+  if (s.thick) {
+    legend.line(LineStyle::cut, "cut (" + sheet_number(s.kerf_mm) + " mm kerf allowed for: half of it outside)");
+    legend.line(LineStyle::hinge, "hinge line (the panel's edge)");
+    legend.sample("S1", TextRole::seam, "hinge to the other S1");
+    legend.sample("12 P7", TextRole::panel, "piece 12 in assembly order, panel 7 of the 3D files");
+    legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
+                "assembly on the last page");
+    add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
+    const std::string note = "print at 100 % (actual size)";
+    add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
+    return s.page.y() - legend.bottom();
+  }
   legend.line(LineStyle::cut, "cut");
   legend.line(LineStyle::mountain, "mountain fold (away from you)");
   legend.line(LineStyle::valley, "valley fold (towards you)");
@@ -154,6 +169,14 @@ Vec2 page_size_from_string(const std::string& name) {
 
 std::vector<SheetLine> Piece::lines() const {
   std::vector<SheetLine> out;
+  if (cut) {  // a plate: its cut outline, and the panel's hinge edges
+    for (std::size_t k = 0; k < cut->size(); ++k) out.push_back(SheetLine{(*cut)[k], (*cut)[(k + 1) % cut->size()], LineStyle::cut});
+    for (const SeamSide& s : seams) {
+      const Polygon2& o = panels[s.panel].outline;
+      out.push_back(SheetLine{o[s.edge], o[(s.edge + 1) % o.size()], LineStyle::hinge});
+    }
+    return out;
+  }
   std::vector<std::vector<bool>> fold(panels.size());
   for (std::size_t i = 0; i < panels.size(); ++i) fold[i].assign(panels[i].outline.size(), false);
   for (const PieceFold& f : folds) {
@@ -198,6 +221,7 @@ std::vector<SheetFill> Piece::fills() const {
 std::vector<Vec2> Piece::points() const {
   std::vector<Vec2> out;
   for (const PiecePanel& p : panels) out.insert(out.end(), p.outline.begin(), p.outline.end());
+  if (cut) out.insert(out.end(), cut->begin(), cut->end());
   for (const SeamSide& s : seams) {
     if (s.tab) out.insert(out.end(), s.tab->begin(), s.tab->end());
   }
@@ -207,13 +231,16 @@ std::vector<Vec2> Piece::points() const {
 namespace {
 
 /// Unfolds, labels and lays out the pieces under a header `header` mm tall.
-CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheets s, double header) {
+CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheets s, double header,
+                  const ThickPlates* plates) {
   const double m = options.margin;
   s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header - footer_mm};
   const double tab_room = options.tabs ? 2.0 * options.max_tab_mm : 0.0;
   const Vec2 fit(s.content.width - tab_room, s.content.height - tab_room);
   s.left_out.clear();
   s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams, s.left_out);
+  for (std::size_t k = 0; k < s.pieces.size(); ++k) s.pieces[k].number = k + 1;
+  if (plates) sheets::cut_plates(s.pieces, *plates, s.scale, s.kerf_mm);
   // Shelves from the top of the content area down, pages as they fill.
   const double left = s.content.origin.x(), right = left + s.content.width;
   const double bottom = s.content.origin.y(), top = bottom + s.content.height;
@@ -264,12 +291,45 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   if (!std::isfinite(s.smallest_label)) s.smallest_label = 0.0;
   s.untabbed_seams = options.tabs ? s.seams - s.tabs : 0;
   for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat, any_seam_on_fold, s.left_out.size());
+  if (plates) {
+    s.piece_pages = s.pages.size();
+    s.cut_area_mm2 = 0.0;
+    for (const Piece& piece : s.pieces) {
+      if (piece.cut) s.cut_area_mm2 += 0.5 * std::abs(signed_area2(*piece.cut));
+    }
+    for (SheetPage& page : sheets::assembly_pages(s)) s.pages.push_back(std::move(page));
+  }
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {
       if (!l.a.allFinite() || !l.b.allFinite()) throw Error(ExitCode::internal, "a cut-sheet line is not finite");
     }
   }
   return s;
+}
+
+CutSheets lay_out_with_header(const Design& design, const CutSheetOptions& options, const CutSheets& base,
+                              const ThickPlates* plates) {
+  const double m = options.margin;
+  // The header as tall as the legend needs on this page width, and a 4 mm gap:
+  // first with every item (the flags are known once the pieces are), then, when
+  // the items shown need fewer rows, again with the room that frees.
+  auto header_for = [&](bool uncuttable, bool flat, bool on_fold, std::size_t left_out) {
+    CutSheets probe_sheets = base;
+    probe_sheets.pages.resize(1);
+    SheetPage probe;
+    return decorate(probe, probe_sheets, 0, uncuttable, flat, on_fold, left_out) + 4.0 - m;
+  };
+  auto flags_header = [&](const CutSheets& s) {
+    return header_for(s.any_uncuttable, s.any_flat, s.any_seam_on_fold, s.left_out.size());
+  };
+  const double worst = header_for(true, true, true, 999999);
+  CutSheets first = lay_out(design, options, base, worst, plates);
+  const double tight = flags_header(first);
+  if (tight < worst - 0.5) {
+    CutSheets again = lay_out(design, options, base, tight, plates);
+    if (flags_header(again) <= tight + 1e-9) return again;
+  }
+  return first;
 }
 
 }  // namespace
@@ -288,27 +348,27 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
   base.page = options.page;
   // The size of the panels that go on the sheets (an oversized panel's 1e8 would make every piece a speck).
   base.scale = options.scale ? *options.scale : options.model_mm / bounded_model_size(design);
-  const double m = options.margin;
-  // The header as tall as the legend needs on this page width, and a 4 mm gap:
-  // first with every item (the flags are known once the pieces are), then, when
-  // the items shown need fewer rows, again with the room that frees.
-  auto header_for = [&](bool uncuttable, bool flat, bool on_fold, std::size_t left_out) {
-    CutSheets probe_sheets = base;
-    probe_sheets.pages.resize(1);
-    SheetPage probe;
-    return decorate(probe, probe_sheets, 0, uncuttable, flat, on_fold, left_out) + 4.0 - m;
-  };
-  auto flags_header = [&](const CutSheets& s) {
-    return header_for(s.any_uncuttable, s.any_flat, s.any_seam_on_fold, s.left_out.size());
-  };
-  const double worst = header_for(true, true, true, 999999);
-  CutSheets first = lay_out(design, options, base, worst);
-  const double tight = flags_header(first);
-  if (tight < worst - 0.5) {
-    CutSheets again = lay_out(design, options, base, tight);
-    if (flags_header(again) <= tight + 1e-9) return again;
+  if (options.plates) {
+    const PlateCut& cut = *options.plates;
+    if (!(cut.thickness_mm > 0.0) || !std::isfinite(cut.thickness_mm)) {
+      throw InvalidInputError("--thickness-mm", "must be a positive number of millimetres");
+    }
+    if (!(cut.kerf_mm >= 0.0) || !std::isfinite(cut.kerf_mm)) throw InvalidInputError("--kerf", "must be a number of millimetres >= 0");
+    CutSheetOptions plate_options = options;
+    plate_options.plates.reset();
+    plate_options.mode = PieceMode::panels;  // one piece a plate
+    plate_options.tabs = false;
+    ThickOptions thick;
+    thick.thickness = cut.thickness_mm / base.scale;
+    thick.side = cut.side;
+    base.mode = PieceMode::panels;
+    base.thick = check_thickness(design, assess_buildability(design), thick);
+    base.kerf_mm = cut.kerf_mm;
+    base.thickness_mm = cut.thickness_mm;
+    const ThickPlates plates = thick_plates(design, *base.thick);
+    return lay_out_with_header(design, plate_options, base, &plates);
   }
-  return first;
+  return lay_out_with_header(design, options, base, nullptr);
 }
 
 }  // namespace phedra

@@ -86,6 +86,13 @@ class ThickPlates {
   const Design& design() const { return design_; }
   const AssemblyMesh& mesh() const { return mesh_; }
 
+  /// Plate k's bottom (the panel) and top faces in its frame (corner 0 at the
+  /// origin, the panel in the xy-plane, its right-handed normal +z), corner by corner.
+  const std::vector<Vec3>& bottom(std::size_t k) const { return plates_[k].bottom; }
+  const std::vector<Vec3>& top(std::size_t k) const { return plates_[k].top; }
+  /// Plate k's bevel angle at edge e (corner e to e + 1), radians.
+  double bevel(std::size_t k, std::size_t e) const { return plates_[k].bevel[e]; }
+
   /// Plate k's solid at t (rigidly moved with its panel).
   Solid solid(std::size_t k, double t) const;
   /// Every plate's solid at the mesh positions x (panel_mesh positions at some t).

@@ -18,6 +18,7 @@
 #include "phedra/design.h"
 #include "phedra/panel_shape.h"
 #include "phedra/sheet_page.h"
+#include "phedra/thick_plates.h"
 
 #include <optional>
 #include <string>
@@ -56,6 +57,11 @@ struct SeamSide {
 };
 
 struct Piece {
+  std::size_t number = 0;                 ///< its place in the assembly order, from 1
+  /// Thick plates: the outline a laser (or saw) cuts: the plate's top face (the
+  /// bevels' inset, so the straight-cut plate lies inside the bevelled one)
+  /// grown by half the kerf. The panel's hinge edges are then hinge lines.
+  std::optional<Polygon2> cut;
   std::vector<PiecePanel> panels;
   std::vector<PieceFold> folds;
   std::vector<SeamSide> seams;
@@ -65,6 +71,13 @@ struct Piece {
   std::vector<SheetLine> lines() const;
   std::vector<SheetFill> fills() const;
   std::vector<Vec2> points() const;       ///< every outline and tab corner
+};
+
+/// Thick plates cut from sheet material (issue 27, item 3): one piece a plate.
+struct PlateCut {
+  double thickness_mm = 3.0;              ///< the material's thickness
+  double kerf_mm = 0.0;                   ///< the width the cutter burns away: cut paths run half of it outside
+  PlateSide side = PlateSide::automatic;
 };
 
 struct CutSheetOptions {
@@ -77,6 +90,8 @@ struct CutSheetOptions {
   Vec2 page = Vec2(210.0, 297.0);         ///< mm (A4 portrait)
   double margin = 10.0;                   ///< mm around the page's content
   double gap = 3.0;                       ///< mm between pieces
+  /// Thick plates instead of card: pieces are plates (PieceMode::panels, no tabs).
+  std::optional<PlateCut> plates;
 };
 /// "a4", "letter", "a3" or "WxH" in mm.
 Vec2 page_size_from_string(const std::string& name);  ///< throws InvalidInputError("--page")
@@ -97,6 +112,15 @@ struct CutSheets {
   bool any_uncuttable = false, any_flat = false, any_seam_on_fold = false;
   /// Panels left off the sheets: oversized and slivers (panel_size.h), by number.
   std::vector<std::size_t> left_out;
+  /// Thick plates: the plates' report (thickness in model units), the kerf, and
+  /// the material: the pieces' cut area and the pages they use (the assembly
+  /// page, the last, holds no piece).
+  std::optional<ThickReport> thick;
+  double kerf_mm = 0.0, thickness_mm = 0.0;
+  double cut_area_mm2 = 0.0;
+  std::size_t piece_pages = 0;
+  /// The part of the pages' area (those with pieces) the pieces cover.
+  double material_used() const { return piece_pages ? cut_area_mm2 / (static_cast<double>(piece_pages) * page.x() * page.y()) : 0.0; }
 };
 
 /// Smallest readable capital height (mm) the report warns below.

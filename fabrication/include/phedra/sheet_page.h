@@ -12,7 +12,7 @@
 
 namespace phedra {
 
-enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis };
+enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis, hinge };
 enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable, marker };
 enum class TextRole { panel, seam, title, legend, note };
 
