@@ -241,31 +241,52 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams, s.left_out);
   for (std::size_t k = 0; k < s.pieces.size(); ++k) s.pieces[k].number = k + 1;
   if (plates) sheets::cut_plates(s.pieces, *plates, s.scale, s.kerf_mm);
-  // Shelves from the top of the content area down, pages as they fill.
+  // Shelves from the top of the content area down, pages as they fill. Card
+  // pieces go in assembly order; numbered plates tallest first, each on the
+  // first shelf with room (first fit, decreasing height: less material).
   const double left = s.content.origin.x(), right = left + s.content.width;
   const double bottom = s.content.origin.y(), top = bottom + s.content.height;
-  double x = left, shelf_top = top, shelf = 0.0;
+  std::vector<Placement> at(s.pieces.size());
+  std::vector<std::size_t> order(s.pieces.size());
+  for (std::size_t k = 0; k < s.pieces.size(); ++k) {
+    at[k] = fitting(s.pieces[k].points(), s.content);
+    order[k] = k;
+  }
+  if (plates) {
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return at[a].size().y() > at[b].size().y(); });
+  }
+  struct Shelf {
+    std::size_t page;
+    double top, height, x;
+  };
+  std::vector<Shelf> shelves;
+  s.piece_page.assign(s.pieces.size(), 0);
   std::size_t page = 0;
-  for (Piece& piece : s.pieces) {
-    const Placement at0 = fitting(piece.points(), s.content);
-    Placement at = at0;
-    const Vec2 size = at.size();
-    if (x > left && x + size.x() > right) {
-      x = left;
-      shelf_top -= shelf + options.gap;
-      shelf = 0.0;
+  for (const std::size_t k : order) {
+    const Vec2 size = at[k].size();
+    Shelf* shelf = nullptr;
+    if (plates) {
+      for (Shelf& candidate : shelves) {
+        if (candidate.x + size.x() <= right + 1e-9 && size.y() <= candidate.height + 1e-9) {
+          shelf = &candidate;
+          break;
+        }
+      }
+    } else if (!shelves.empty() && (shelves.back().x == left || shelves.back().x + size.x() <= right + 1e-9) &&
+               shelves.back().top - size.y() >= bottom) {
+      shelf = &shelves.back();
     }
-    if (shelf_top - size.y() < bottom) {
-      ++page;
-      x = left;
-      shelf_top = top;
-      shelf = 0.0;
+    if (!shelf) {
+      const double below = shelves.empty() ? top : shelves.back().top - shelves.back().height - options.gap;
+      if (!shelves.empty() && below - size.y() < bottom) ++page;
+      shelves.push_back({page, shelves.empty() || below - size.y() < bottom ? top : below, size.y(), left});
+      shelf = &shelves.back();
     }
-    at.corner = Vec2(x, shelf_top - size.y());
-    place(piece, at);
-    s.piece_page.push_back(page);
-    x += size.x() + options.gap;
-    shelf = std::max(shelf, size.y());
+    shelf->height = std::max(shelf->height, size.y());
+    at[k].corner = Vec2(shelf->x, shelf->top - size.y());
+    place(s.pieces[k], at[k]);
+    s.piece_page[k] = shelf->page;
+    shelf->x += size.x() + options.gap;
   }
   s.pages.resize(s.pieces.empty() ? 1 : page + 1);
   bool& any_uncuttable = s.any_uncuttable;
