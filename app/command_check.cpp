@@ -20,8 +20,7 @@ struct CheckCommandOptions {
   BuildabilityOptions buildability;
   bool geometry_only = false;
   bool json = false;
-  std::optional<double> thickness;
-  std::string plate_side = "auto";
+  ThicknessOptions thickness;
 };
 
 }  // namespace
@@ -54,16 +53,10 @@ void add_check_command(CLI::App& app, Context& context) {
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();
   add_size_bound_options(sub, options->buildability.bounds);
-  sub->add_option("--thickness", options->thickness,
-                  "Thick panels: plates this thick (model units) offset to one side of the panels, bevelled at the "
-                  "hinges; reports the thick interval where no two plates collide (inside the buildable interval), "
-                  "and which plates end it; exit 1 when the plates collide at t* (docs/design.md, \"Thick panels\")")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--plate-side", options->plate_side,
-                  "With --thickness: the side of the panels the plates lie on: front (the side the panel normals of "
-                  "the exports point to), back, or auto (the side with the wider thick interval)")
-      ->check(CLI::IsMember({"auto", "front", "back"}))
-      ->capture_default_str();
+  add_thickness_options(sub, options->thickness,
+                        "Thick panels: plates this thick offset to one side of the panels, bevelled at the hinges; "
+                        "reports the thick interval where no two plates collide (inside the buildable interval) and "
+                        "which plates end it; exit 1 when the plates collide at t* (docs/design.md, \"Thick panels\")");
   sub->add_flag("--json", options->json, "Print JSON instead of text");
   sub->callback([options, &context] {
     const LoadedDesign loaded = load_with_preset(context, options->preset);
@@ -72,13 +65,10 @@ void add_check_command(CLI::App& app, Context& context) {
     if (!options->geometry_only) buildability = assess_buildability(loaded.design, &loaded.preset, options->buildability);
     const bool buildable = !buildability || buildability->buildable();
     std::optional<ThickReport> thick;
-    if (options->thickness) {
-      if (options->geometry_only) throw InvalidInputError("--thickness", "the thick plates need buildability; drop --geometry-only");
-      ThickOptions thick_options;
-      thick_options.thickness = *options->thickness;
-      thick_options.side = plate_side_from_string(options->plate_side);
-      thick_options.samples_per_side = options->buildability.sweep.samples_per_side;  // as the zero-thickness sweep
-      thick = check_thickness(loaded.design, *buildability, thick_options);
+    if (std::optional<ThickOptions> plates = thick_options(loaded.design, options->thickness)) {
+      if (!buildability) throw InvalidInputError("--thickness", "the thick plates need buildability; drop --geometry-only");
+      plates->samples_per_side = options->buildability.sweep.samples_per_side;  // as the zero-thickness sweep
+      thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
     if (options->json) {

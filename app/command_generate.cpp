@@ -38,8 +38,7 @@ struct GenerateOptions {
   bool cycle = false;
   bool no_self_intersection = false;
   std::optional<std::size_t> intersection_samples;  ///< default: sweep_samples_for(panels)
-  std::optional<double> thickness;
-  std::string plate_side = "auto";
+  ThicknessOptions thickness;
 };
 
 /// --no-self-intersection: the intersection-free sub-interval around t*.
@@ -161,9 +160,7 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
 /// --thickness: every plate a closed solid at t (STL, 3MF, OBJ).
 void write_solids(Context& context, const Design& design, const GenerateOptions& o, const BuildabilityReport& buildability,
                   double t) {
-  ThickOptions options;
-  options.thickness = *o.thickness;
-  options.side = plate_side_from_string(o.plate_side);
+  const ThickOptions options = *thick_options(design, o.thickness);
   const ThickReport report = check_thickness(design, buildability, options);
   const ThickPlates plates = thick_plates(design, report);
   std::vector<std::string> names;
@@ -235,16 +232,10 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "Samples from t* to each limit for the collision sweep (--no-self-intersection and the buildability "
                   "warning); default 200, fewer above 2000 panels (at least 24)")
       ->check(CLI::Range(1, 1000000));
-  sub->add_option("--thickness", o->thickness,
-                  "Thick plates (model units) offset to one side of the panels, bevelled at the hinges, written as "
-                  "solids at --at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate "
-                  "(docs/design.md, \"Thick panels\")")
-      ->check(CLI::PositiveNumber);
-  sub->add_option("--plate-side", o->plate_side,
-                  "With --thickness: front (the side the exported panel normals point to), back, or auto (the side "
-                  "with the wider thick interval)")
-      ->check(CLI::IsMember({"auto", "front", "back"}))
-      ->capture_default_str();
+  add_thickness_options(sub, o->thickness,
+                        "Thick plates offset to one side of the panels, bevelled at the hinges, written as solids at "
+                        "--at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate (docs/design.md, "
+                        "\"Thick panels\")");
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, &context] {
@@ -258,11 +249,12 @@ void add_generate_command(CLI::App& app, Context& context) {
       throw InvalidInputError("--no-self-intersection", "--cycle runs through the flexion limits; it cannot be "
                                                         "restricted to the intersection-free interval");
     }
-    const bool solids = format == Format::stl || format == Format::three_mf || (format == Format::obj && o->thickness);
-    if (o->thickness && !solids) {
+    const bool thick = o->thickness.model_units || o->thickness.mm;
+    const bool solids = format == Format::stl || format == Format::three_mf || (format == Format::obj && thick);
+    if (thick && !solids) {
       throw InvalidInputError("--thickness", "thick plates are written as solids: .stl, .3mf or .obj");
     }
-    if (!o->thickness && (format == Format::stl || format == Format::three_mf)) {
+    if (!thick && (format == Format::stl || format == Format::three_mf)) {
       throw InvalidInputError("--thickness", "an " + std::string(format == Format::stl ? "STL" : "3MF") +
                                                  " file holds solids: give the plate thickness (--thickness T)");
     }

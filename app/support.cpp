@@ -27,6 +27,38 @@ void add_size_bound_options(CLI::App* command, SizeBounds& bounds) {
       ->capture_default_str();
 }
 
+void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::string& what) {
+  CLI::Option* model = command->add_option("--thickness", o.model_units, what + " (model units)")->check(CLI::PositiveNumber);
+  CLI::Option* mm = command->add_option("--thickness-mm", o.mm,
+                                        "The same in millimetres on the cut sheets' scale (--scale, or --model-size as "
+                                        "phedra outlines)")
+                        ->check(CLI::PositiveNumber)
+                        ->excludes(model);
+  CLI::Option* scale = command->add_option("--scale", o.scale, "With --thickness-mm: millimetres a model unit")
+                           ->check(CLI::PositiveNumber)
+                           ->needs(mm);
+  command->add_option("--model-size", o.model_mm,
+                      "With --thickness-mm and no --scale: the model's size in mm (as phedra outlines)")
+      ->check(CLI::PositiveNumber)
+      ->needs(mm)
+      ->excludes(scale)
+      ->capture_default_str();
+  command->add_option("--plate-side", o.side,
+                      "With a thickness: the side of the panels the plates lie on: front (the side the panel normals "
+                      "of the exports point to), back, or auto (the side with the wider thick interval)")
+      ->check(CLI::IsMember({"auto", "front", "back"}))
+      ->capture_default_str();
+}
+
+std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& o) {
+  if (!o.model_units && !o.mm) return std::nullopt;
+  ThickOptions out;
+  out.side = plate_side_from_string(o.side);
+  out.thickness = o.model_units ? *o.model_units
+                                : *o.mm / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
+  return out;
+}
+
 Design load(Context& context, const std::string& path) {
   context.preset = path;
   return load_design(path);

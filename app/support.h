@@ -4,6 +4,7 @@
 #include "commands.h"
 #include "phedra/design.h"
 #include "phedra/panel_size.h"
+#include "phedra/thick_plates.h"
 
 #include <nlohmann/json.hpp>
 
@@ -17,6 +18,18 @@ void add_preset_argument(CLI::App* command, std::string& preset);
 
 /// --max-growth and --max-panel-ratio: what counts as buildable by size (panel_size.h).
 void add_size_bound_options(CLI::App* command, SizeBounds& bounds);
+
+/// Thick plates: --thickness T (model units) or --thickness-mm MM on the cut
+/// sheets' scale (--scale mm a model unit, or the model's size made --model-size
+/// mm, as `phedra outlines`), and --plate-side.
+struct ThicknessOptions {
+  std::optional<double> model_units, mm, scale;
+  double model_mm = 200.0;
+  std::string side = "auto";
+};
+void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);
+/// The plate options asked for (none without --thickness or --thickness-mm).
+std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& options);
 
 /// Loads and builds the design of a preset file; records the path in the context
 /// so that errors name it.

@@ -376,4 +376,17 @@ TEST_CASE("thick plates on cut sheets: the command, its files and its errors", "
   CHECK(thick.code == 2);
   CHECK_THAT(thick.err, Contains("does not fit on panel"));
   CHECK_FALSE(fs::exists(dir.path / "k.pdf"));
+  // --thickness-mm on check means what it means on the sheets: millimetres at their scale.
+  const Design design = load_design(tube);
+  CutSheetOptions options;
+  options.model_mm = 400.0;
+  options.plates = PlateCut{3.0, 0.0, PlateSide::automatic};
+  const CutSheets sheets = cut_sheets(design, options);
+  const test::Run check = test::phedra_cli({"check", tube, "--thickness-mm", "3", "--model-size", "400", "--json"});
+  REQUIRE(check.code == 0);
+  CHECK(nlohmann::json::parse(check.out)["thick"]["thickness"].get<double>() == Approx(sheets.thick->thickness));
+  const test::Run scaled = test::phedra_cli({"check", tube, "--thickness-mm", "3", "--scale", "30", "--json"});
+  CHECK(nlohmann::json::parse(scaled.out)["thick"]["thickness"].get<double>() == Approx(0.1));
+  CHECK(test::phedra_cli({"check", tube, "--thickness", "0.1", "--thickness-mm", "3"}).code == 2);
+  CHECK(test::phedra_cli({"check", tube, "--scale", "30"}).code == 2);
 }
