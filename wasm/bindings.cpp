@@ -18,6 +18,7 @@
 #include "phedra/optimize.h"
 #include "phedra/self_intersection.h"
 #include "phedra/design_preset.h"
+#include "phedra/thick_plates.h"
 
 #include <nlohmann/json.hpp>
 
@@ -224,6 +225,7 @@ class Designer {
       Design design = design_from_json(document);
       AssemblyMesh mesh = panel_mesh(design);
       mesh_ = std::move(mesh);
+      plates_.reset();  // its plates refer to the design it replaces
       design_.emplace(std::move(design));
       positions_.assign(3 * mesh_.vertices.size(), 0.0);
       faces_.clear();
@@ -547,6 +549,84 @@ class Designer {
     });
   }
 
+  /// Thick plates (docs/design.md, "Thick panels"), as `phedra check --thickness`:
+  /// `options_text` JSON {thickness (model units), side: "auto" | "front" | "back",
+  /// samples (a side; 0: as the command)}. Keeps the plates for plateTriangles.
+  /// {ok: true, thickness, side, plates, smallest_bevel_degrees, volume,
+  /// panel_area, interval: [a, b] or null (they collide at t*), at_t_star: text or
+  /// null, ends: [{side, t, kind, text, panels: [a, b]}]} or {ok: false, field, message}.
+  val thick(const std::string& options_text) {
+    if (!design_) return failure("", "no design loaded");
+    return answer([&] {
+      const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
+      ThickOptions options;
+      options.thickness = o.value("thickness", 0.0);
+      options.side = plate_side_from_string(o.value("side", std::string("auto")));
+      options.samples_per_side = o.value("samples", std::size_t{0});
+      plates_.reset();
+      BuildabilityOptions quick;
+      quick.diagnosis.hints = false;
+      const ThickReport r = check_thickness(*design_, assess_buildability(*design_, nullptr, quick), options);
+      plates_.emplace(thick_plates(*design_, r));
+      val v = val::object();
+      v.set("ok", true);
+      const nlohmann::json j = r.to_json();
+      v.set("thickness", r.thickness);
+      v.set("side", to_string(r.side));
+      v.set("plates", static_cast<double>(r.plates));
+      v.set("smallest_bevel_degrees", j["smallest_bevel_degrees"].get<double>());
+      v.set("volume", r.volume);
+      v.set("panel_area", r.panel_area);
+      if (r.at_t_star) {
+        v.set("interval", val::null());
+        v.set("at_t_star", j["at_t_star"]["text"].get<std::string>());
+      } else {
+        val interval = val::array();
+        interval.call<void>("push", r.thick_lower);
+        interval.call<void>("push", r.thick_upper);
+        v.set("interval", interval);
+        v.set("at_t_star", val::null());
+      }
+      val ends = val::array();
+      for (const char* side : {"lower", "upper"}) {
+        if (j[side].is_null()) continue;
+        val e = val::object();
+        e.set("side", std::string(side[0] == 'l' ? "below" : "above"));
+        e.set("t", j[side]["t"].get<double>());
+        e.set("kind", j[side]["kind"].get<std::string>());
+        e.set("text", j[side]["text"].get<std::string>());
+        val panels = val::array();
+        for (const auto& p : j[side]["panels"]) panels.call<void>("push", p.get<double>());
+        e.set("panels", panels);
+        ends.call<void>("push", e);
+      }
+      v.set("ends", ends);
+      return v;
+    });
+  }
+
+  /// The plates of the last thick() at t as triangles (x, y, z of each corner,
+  /// three corners a triangle, outward), a view into the module's memory valid
+  /// until the next call; empty without plates. Outside the flexion interval: {ok: false, ...}.
+  val plateTriangles(double t) {
+    if (!design_) return failure("", "no design loaded");
+    triangles_.clear();
+    if (!plates_) return val(emscripten::typed_memory_view(triangles_.size(), triangles_.data()));
+    try {
+      for (const Solid& solid : plates_->solids(plates_->positions(t))) {
+        for (const auto& tri : solid.triangles) {
+          for (std::size_t c : tri) {
+            const Vec3& p = solid.vertices[c];
+            triangles_.insert(triangles_.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
+          }
+        }
+      }
+    } catch (const Error& e) {
+      return failure("t", e.what());
+    }
+    return val(emscripten::typed_memory_view(triangles_.size(), triangles_.data()));
+  }
+
   /// FOLD text with `count` frames over the flexion interval (as `phedra generate -o X.fold --count N`).
   std::string fold(int count) const {
     if (!design_) return "";
@@ -575,6 +655,8 @@ class Designer {
   std::vector<double> apexes_;
   std::vector<std::uint32_t> collisions_, invalid_;
   std::string glb_;
+  std::optional<ThickPlates> plates_;  ///< of design_ (reset with it)
+  std::vector<float> triangles_;
 };
 
 }  // namespace
@@ -599,5 +681,7 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("fold", &Designer::fold)
       .function("repair", &Designer::repair)
       .function("figures", &Designer::figures)
-      .function("optimize", &Designer::optimize);
+      .function("optimize", &Designer::optimize)
+      .function("thick", &Designer::thick)
+      .function("plateTriangles", &Designer::plateTriangles);
 }

@@ -17,6 +17,7 @@
 //   panel.js         the title, status, causes, figures, slider labels, signs, Undo / Redo state
 //   buildability.js  the buildability report and figures, Repair, keep buildable
 //   targets.js       the Targets box: the figures phedra optimize targets, live, and Optimize
+//   thickness.js     the Thick panels box: the plates, their thick interval, drawn at t
 //   modes.js         mode, grid and row sizes, profiles and apexes
 //   files.js         save, open, drop, shipped presets, .glb / FOLD / PNG, the first preset
 //   api.js           window.phedraDesigner, for tests and measurements
@@ -35,6 +36,7 @@ import { createRenderLoop } from './designer/render.js';
 import { DesignState, travelText } from './designer/state.js';
 import { createSurface } from './designer/surface.js';
 import { createTargets } from './designer/targets.js';
+import { createThickness } from './designer/thickness.js';
 import { $ } from './designer/util.js';
 
 // --- the stage (before the core loads) ---------------------------------------
@@ -50,7 +52,8 @@ const designer = new core.Designer();
 const state = new DesignState();
 
 const handles = createHandles({ ...stage, state, designer, requestRender });
-const surface = createSurface({ scene: stage.scene, state, designer, requestRender, showT: (t) => panel.showT(t), screenOf: (p) => handles.screenOf(p) });
+const surface = createSurface({ scene: stage.scene, state, designer, requestRender, showT: (t) => panel.showT(t), screenOf: (p) => handles.screenOf(p),
+                                onPositions: (t) => thickness?.follow(t) });
 const panel = createPanel({
   state,
   locate: (field) => { const p = handles.handleOf(field); return p ? handles.screenOf(p) : null; },
@@ -62,6 +65,7 @@ const dragging = createDragging({ ...stage, state, handles, loop, applyEdit, set
 const framing = createFraming({ ...stage, state, designer, handles, surface, isDragging: () => dragging.current !== null, requestRender });
 const checks = createBuildability({ state, designer, panel, surface, apply, onFigures: () => targets.refresh() });
 const targets = createTargets({ state, designer, apply });
+const thickness = createThickness({ scene: stage.scene, state, designer, surface, requestRender });
 
 /// The slider at t* (the input configuration: the surface passes through the
 /// handles); `before`: t* of the previous design, to say when an edit moved it
@@ -115,6 +119,7 @@ function apply(candidate, { keepFigures = false, what = 'edit', record = true, k
   panel.updatePanel();
   loop.recalibrate();
   if (!keepFigures) checks.scheduleFigures();
+  thickness.refresh();
   panel.showMessage();
   if (framing.framed) framing.refitIfOutside();
   return true;
@@ -157,6 +162,7 @@ function settle() {
   panel.showPresetText();
   framing.refitIfOutside();
   checks.scheduleFigures();
+  thickness.refresh();
 }
 
 // --- undo and redo ---------------------------------------------------------------
@@ -233,4 +239,4 @@ loop.start({
   drawn: () => { handles.updateLabels(); surface.updatePanelLabel(); },
 });
 
-installApi({ ...stage, state, designer, surface, handles, loop, dragging, checks, files, framing, apply, applyEdit });
+installApi({ ...stage, state, designer, surface, handles, loop, dragging, checks, files, framing, thickness, apply, applyEdit });

@@ -111,10 +111,10 @@ std::string describe_limit(const ThickLimit& l, bool several) {
   return pair;
 }
 
-nlohmann::json limit_json(const std::optional<ThickLimit>& l) {
+nlohmann::json limit_json(const std::optional<ThickLimit>& l, bool several) {
   if (!l) return nullptr;
   const char* kind = l->kind == ThickLimit::Kind::hinge ? "hinge" : l->kind == ThickLimit::Kind::plates ? "plates" : "thin";
-  return {{"kind", kind}, {"t", l->t}, {"panels", {l->a.face, l->b.face}}, {"text", describe_limit(*l, true)}};
+  return {{"kind", kind}, {"t", l->t}, {"panels", {l->a.face, l->b.face}}, {"text", describe_limit(*l, several)}};
 }
 
 }  // namespace thick_detail
@@ -156,9 +156,9 @@ nlohmann::json ThickReport::to_json() const {
                       {"volume", volume},
                       {"panel_area", panel_area},
                       {"samples", samples},
-                      {"at_t_star", limit_json(at_t_star)},
-                      {"lower", limit_json(lower)},
-                      {"upper", limit_json(upper)}};
+                      {"at_t_star", limit_json(at_t_star, members > 1)},
+                      {"lower", limit_json(lower, members > 1)},
+                      {"upper", limit_json(upper, members > 1)}};
   j["thick_interval"] = at_t_star ? nlohmann::json(nullptr) : nlohmann::json::array({thick_lower, thick_upper});
   return j;
 }

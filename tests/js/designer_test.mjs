@@ -109,6 +109,30 @@ try {
     await page.selectOption('#targets-table tr:nth-child(2) select', '');
     await page.click('#targets summary');
   }
+  {
+    // Thick panels (issue 27): the plates of `phedra check --thickness`, their thick
+    // interval as the command says it, drawn at t in place of the panels; an edit
+    // cuts them again.
+    await page.click('#thickness summary');
+    await page.fill('#thick-value', '0.1');
+    await page.selectOption('#thick-side', 'front');
+    await page.click('#thick-show');
+    await page.waitForFunction(() => window.phedraDesigner.platesShown(), null, { timeout: 30000 });
+    const r = await api(() => window.phedraDesigner.thick());
+    const cli = JSON.parse(execFileSync(phedra, ['check', preset, '--thickness', '0.1', '--plate-side', 'front', '--json'],
+      { encoding: 'utf8' })).thick;
+    check(r.plates === cli.plates && r.side === cli.side, `plates ${r.plates} ${r.side} vs CLI ${cli.plates} ${cli.side}`);
+    check(r.interval && Math.abs(r.interval[0] - cli.thick_interval[0]) < 1e-6 && Math.abs(r.interval[1] - cli.thick_interval[1]) < 1e-6,
+      `thick interval ${r.interval} vs CLI ${cli.thick_interval}`);
+    const triangles = await api(() => window.phedraDesigner.plateTriangleCount());
+    check(triangles > 0 && triangles % 2 === 0, `plate triangles drawn: ${triangles}`);
+    const text = await page.$eval('#thick-status', (e) => e.textContent);
+    check(text.includes('thick interval [') && text.includes('56 plates'), `the Thick panels box says: "${text}"`);
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-plates.png') });
+    await page.click('#thick-show');
+    check(!(await api(() => window.phedraDesigner.platesShown())), 'Hide plates left them shown');
+    await page.click('#thickness summary');
+  }
   const loadFile = async (file) => {
     const text = JSON.parse(readFileSync(file, 'utf8'));
     const ok = await api((p) => window.phedraDesigner.apply(p), text.preset ?? text);

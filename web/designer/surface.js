@@ -19,7 +19,7 @@ const sameSet = (a, b) => a.size === b.size && [...a].every((x) => b.has(x));
 
 /// `state`: the DesignState; `designer`: the core's Designer; `showT(t)`: says
 /// the t the positions are at; `screenOf(point)`: where a point is on the page.
-export function createSurface({ scene, state, designer, requestRender, showT, screenOf = null }) {
+export function createSurface({ scene, state, designer, requestRender, showT, screenOf = null, onPositions = null }) {
   const surface = new THREE.Mesh(new THREE.BufferGeometry(), ['simple', 'invalid', 'colliding'].map((k) =>
     // Pushed back a little in depth, so that the panel edges and fold lines drawn on them do not flicker.
     new THREE.MeshLambertMaterial({ color: validityColours[k], side: THREE.DoubleSide, flatShading: true,
@@ -159,6 +159,7 @@ export function createSurface({ scene, state, designer, requestRender, showT, sc
       updatePanelLabel();
     }
     showT(t);
+    if (onPositions) onPositions(t);
     requestRender();
   }
 
@@ -219,6 +220,8 @@ export function createSurface({ scene, state, designer, requestRender, showT, sc
   return {
     rebuild,
     updatePositions,
+    /// The panels drawn or not (the thick plates show in their place; outlines and hinges stay).
+    showPanels(visible) { surface.visible = visible; requestRender(); },
     highlightPanel,
     updatePanelLabel,
     /// The highlighted panel (-1: none).
