@@ -2,6 +2,7 @@
 
 #include "phedra/panel_size.h"
 
+#include "phedra/bisection.h"
 #include "phedra/box_tree.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
@@ -408,22 +409,15 @@ std::optional<Collision> sweep(const CollisionDetector& detector, double end, st
     }
     // Bisect [good, bad] down to 1e-12 of the interval's width, testing only
     // the panels that come close between the two.
-    double bad = t;
     const auto pairs = detector.close_pairs(x_good, x);
-    for (int iteration = 0; iteration < 80 && std::abs(bad - good) > 1e-12 * width; ++iteration) {
-      const double mid = 0.5 * (good + bad);
+    hit = bisect_first_hit(good, t, 1e-12 * width, *hit, [&](double mid) {
       const Points xm = detector.positions(mid);
       std::optional<Collision> h = detector.grown(xm, mid, limit, max_growth);
       if (!h) h = detector.continue_hinges(xm, good_openings, next, mid);
       if (!h) h = detector.panels_among(xm, mid, pairs);
-      if (h) {
-        bad = mid;
-        hit = h;
-      } else {
-        good = mid;
-        good_openings = next;
-      }
-    }
+      if (!h) good_openings = next;
+      return h;
+    });
     hit->t = good;
     if (std::abs(end - good) <= 1e-9 * width) {
       free_end = end;

@@ -2,6 +2,7 @@
 
 #include "phedra/thick_plates.h"
 
+#include "phedra/bisection.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
 
@@ -39,20 +40,13 @@ std::optional<ThickLimit> sweep_plates(const ThickPlates& plates, double end, st
       free_end = t;
       continue;
     }
-    double bad = t;
-    for (int i = 0; i < 80 && std::abs(bad - good) > 1e-12 * width; ++i) {
-      const double mid = 0.5 * (good + bad);
-      const std::optional<ThickPlates::Contact> h = plates.collision(plates.positions(mid), good_openings, next);
-      if (h) {
-        bad = mid;
-        hit = h;
-      } else {
-        good = mid;
-        good_openings = next;
-      }
-    }
+    const ThickPlates::Contact first = bisect_first_hit(good, t, 1e-12 * width, *hit, [&](double mid) {
+      std::optional<ThickPlates::Contact> h = plates.collision(plates.positions(mid), good_openings, next);
+      if (!h) good_openings = next;
+      return h;
+    });
     free_end = good;
-    return limit_of(plates, *hit, good);
+    return limit_of(plates, first, good);
   }
   return std::nullopt;
 }

@@ -1,6 +1,7 @@
 #include "phedra/solid_export.h"
 
 #include "phedra/errors.h"
+#include "phedra/xml_text.h"
 
 #include <zlib.h>
 
@@ -70,20 +71,6 @@ std::string obj(const std::vector<Solid>& solids, const std::vector<std::string>
       out += "f " + std::to_string(base + t[0]) + " " + std::to_string(base + t[1]) + " " + std::to_string(base + t[2]) + "\n";
     }
     base += solids[k].vertices.size();
-  }
-  return out;
-}
-
-std::string xml_escape(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
-    }
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include "phedra/sheet_page.h"
 
 #include "phedra/number_format.h"
+#include "phedra/xml_text.h"
 
 #include <cctype>
 #include <cmath>
@@ -11,19 +12,6 @@
 
 namespace phedra {
 namespace {
-
-std::string escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      default: out += c;
-    }
-  }
-  return out;
-}
 
 const char* style_class(LineStyle style) {
   switch (style) {
@@ -155,7 +143,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
   auto Y = [H](const Vec2& p) { return sheet_number(H - p.y()); };
   std::ostringstream svg;
   svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << sheet_number(size.x()) << "mm\" height=\"" << sheet_number(H)
-      << "mm\" viewBox=\"0 0 " << sheet_number(size.x()) << ' ' << sheet_number(H) << "\">\n<title>" << escape(title)
+      << "mm\" viewBox=\"0 0 " << sheet_number(size.x()) << ' ' << sheet_number(H) << "\">\n<title>" << xml_escape(title)
       << "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (const SheetFill& f : page.fills) {
     svg << "<polygon fill=\"" << svg_fill(f.style) << '"';
@@ -177,7 +165,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
         << "\" lengthAdjust=\"spacingAndGlyphs\" fill=\"" << text_colour(t.role) << '"'
         << (t.role == TextRole::title ? " font-weight=\"bold\"" : "");
     if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << sheet_number(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
-    svg << '>' << escape(t.text) << "</text>\n";
+    svg << '>' << xml_escape(t.text) << "</text>\n";
   }
   svg << "</g>\n</svg>\n";
   return svg.str();
