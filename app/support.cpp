@@ -43,6 +43,12 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
       ->needs(mm)
       ->excludes(scale)
       ->capture_default_str();
+  command->add_option("--hinge-gap", o.hinge_gap,
+                      "With a thickness: a gap this wide at every hinge (in the thickness's units: model units, or mm "
+                      "with --thickness-mm), each plate's hinge sides moved back by half of it, for a tape, fabric or "
+                      "printed-film hinge across it")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   command->add_option("--plate-side", o.side,
                       "With a thickness: the side of the panels the plates lie on: front (the side the panel normals "
                       "of the exports point to), back, or auto (the side with the wider thick interval)")
@@ -54,8 +60,9 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
   if (!o.model_units && !o.mm) return std::nullopt;
   ThickOptions out;
   out.side = plate_side_from_string(o.side);
-  out.thickness = o.model_units ? *o.model_units
-                                : *o.mm / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
+  const double unit = o.model_units ? 1.0 : 1.0 / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
+  out.thickness = (o.model_units ? *o.model_units : *o.mm) * unit;
+  out.hinge_gap = o.hinge_gap * unit;
   return out;
 }
 

@@ -25,6 +25,7 @@ void add_size_bound_options(CLI::App* command, SizeBounds& bounds);
 struct ThicknessOptions {
   std::optional<double> model_units, mm, scale;
   double model_mm = 200.0;
+  double hinge_gap = 0.0;  ///< in the thickness's units
   std::string side = "auto";
 };
 void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);

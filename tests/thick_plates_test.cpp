@@ -214,6 +214,49 @@ TEST_CASE("thick plates: the bevels follow the plate-side opening, and the motio
   }
 }
 
+TEST_CASE("thick plates: a hinge gap moves each plate back from its hinges by half of it", "[thick]") {
+  const Design design = load_design(presets + "/parallelogram-tube.json");
+  const BuildabilityReport thin = assess_buildability(design);
+  ThickOptions options;
+  options.thickness = 0.08;
+  const ThickReport plain = check_thickness(design, thin, options);
+  options.hinge_gap = 0.05;
+  const ThickReport gapped = check_thickness(design, thin, options);
+  CHECK(gapped.hinge_gap == 0.05);
+  CHECK(gapped.volume < plain.volume);
+  const ThickPlates plates = thick_plates(design, gapped);
+  const ThickPlates whole = thick_plates(design, plain);
+  const Points x = plates.positions(gapped.t_star);
+  const std::vector<Solid> solids = plates.solids(x);
+  // The mesh's edges with two panels are the hinges: every bottom corner of a
+  // plate keeps half the gap from each hinge line of its panel.
+  std::map<std::pair<std::size_t, std::size_t>, int> uses;
+  for (std::size_t k = 0; k < plates.plates(); ++k) {
+    const Quad& q = plates.mesh().faces[plates.panel(k)];
+    for (int c = 0; c < 4; ++c) ++uses[{std::min(q[c], q[(c + 1) % 4]), std::max(q[c], q[(c + 1) % 4])}];
+  }
+  std::size_t hinge_sides = 0;
+  for (std::size_t k = 0; k < plates.plates(); ++k) {
+    REQUIRE(closed_and_oriented(solids[k]));
+    const Quad& q = plates.mesh().faces[plates.panel(k)];
+    for (int c = 0; c < 4; ++c) {
+      const std::size_t u = q[c], v = q[(c + 1) % 4];
+      if (uses[{std::min(u, v), std::max(u, v)}] < 2) continue;
+      ++hinge_sides;
+      const Vec3 a = x[u], d = (x[v] - x[u]).normalized();
+      for (std::size_t b = 0; b < plates.bottom(k).size(); ++b) {
+        const Vec3& p = solids[k].vertices[b];
+        CHECK(((p - a) - (p - a).dot(d) * d).norm() >= 0.025 - 1e-9);
+      }
+    }
+  }
+  CHECK(hinge_sides == 2 * 76);  // 76 hinges, two plates each
+  CHECK(whole.bottom(0).size() == plates.bottom(0).size());
+  const test::Run big = test::phedra_cli({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge-gap", "5"});
+  CHECK(big.code == 2);
+  CHECK_THAT(big.err, Contains("--hinge-gap: a hinge gap of 5 leaves nothing of panel"));
+}
+
 TEST_CASE("thick plates: check --thickness reports the thick interval, and plates colliding at t* fail, named", "[thick][cli]") {
   std::ostringstream out, err;
   REQUIRE(cli::run({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--json"}, out, err) == 0);

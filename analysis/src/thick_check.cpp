@@ -64,7 +64,8 @@ ThickReport check_side(const Design& design, const BuildabilityReport& thin, con
   r.bevel_lower = bevel.first;
   r.bevel_upper = bevel.second;
   r.members = assembly.member_count();
-  const ThickPlates plates(design, options.thickness, side, bevel);
+  const ThickPlates plates(design, options.thickness, side, bevel, options.hinge_gap);
+  r.hinge_gap = options.hinge_gap;
   r.plates = plates.plates();
   r.smallest_bevel = plates.smallest_bevel();
   r.panel_area = plates.panel_area();
@@ -138,7 +139,7 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
 }
 
 ThickPlates thick_plates(const Design& design, const ThickReport& report) {
-  return ThickPlates(design, report.thickness, report.side, {report.bevel_lower, report.bevel_upper});
+  return ThickPlates(design, report.thickness, report.side, {report.bevel_lower, report.bevel_upper}, report.hinge_gap);
 }
 
 nlohmann::json ThickReport::to_json() const {
@@ -149,6 +150,7 @@ nlohmann::json ThickReport::to_json() const {
                       {"smallest_bevel_degrees", smallest_bevel * 180.0 / std::numbers::pi},
                       {"volume", volume},
                       {"panel_area", panel_area},
+                      {"hinge_gap", hinge_gap},
                       {"samples", samples},
                       {"at_t_star", limit_json(at_t_star, members > 1)},
                       {"lower", limit_json(lower, members > 1)},

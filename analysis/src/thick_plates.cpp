@@ -122,8 +122,12 @@ double Solid::volume() const {
   return v / 6.0;
 }
 
-ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side, std::pair<double, double> range)
+ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side, std::pair<double, double> range,
+                         double hinge_gap)
     : design_(design), mesh_(panel_mesh(design)), thickness_(thickness), side_(side) {
+  if (!(hinge_gap >= 0.0) || !std::isfinite(hinge_gap)) {
+    throw InvalidInputError("--hinge-gap", "the gap at each hinge must be a number >= 0 (got " + format_number(hinge_gap) + ")");
+  }
   if (!(thickness > 0.0) || !std::isfinite(thickness)) {
     throw InvalidInputError("--thickness", "the plate thickness must be a positive number (got " + format_number(thickness) + ")");
   }
@@ -207,7 +211,11 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
       }
     }
   }
-  for (Plate& p : plates_) p.bevel.assign(p.corners.size(), quarter_turn);
+  for (Plate& p : plates_) {
+    p.bevel.assign(p.corners.size(), quarter_turn);
+    p.hinge.assign(p.corners.size(), false);
+  }
+  for (const HingePair& h : hinges_) plates_[h.a].hinge[h.edge_a] = true;
   for (std::size_t k = 0; k < hinges_.size(); ++k) {
     const HingePair& h = hinges_[k];
     const double bound = std::max(0.0, h.facing ? 0.5 * smallest[k] : smallest[k]);
@@ -224,6 +232,7 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
     const Vec3 normal = area_vector(p).normalized();
     const Vec3& m = plate_direction[k];
     std::vector<Vec3> plane_normal(n);
+    std::vector<double> plane_offset(n);
     for (std::size_t e = 0; e < n; ++e) {
       const Vec3 d = (p[(e + 1) % n] - p[e]).normalized();
       const Vec3 w = normal.cross(d);  // into the panel
@@ -235,37 +244,56 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
       smallest_bevel_ = std::min(smallest_bevel_, bevel);
       const Vec3 v = std::cos(bevel) * w + std::sin(bevel) * m;  // up the side face, away from the edge
       plane_normal[e] = d.cross(v).normalized();
+      // A hinge gap moves the side face into the plate by half the gap (in the panel's plane).
+      plane_offset[e] = plane_normal[e].dot(p[e] + (plate.hinge[e] ? 0.5 * hinge_gap : 0.0) * w);
     }
-    std::vector<Vec3> top(n);
-    for (std::size_t c = 0; c < n; ++c) {
-      const std::size_t before = (c + n - 1) % n;
-      Eigen::Matrix3d a;
-      a.row(0) = m.transpose();
-      a.row(1) = plane_normal[before].transpose();
-      a.row(2) = plane_normal[c].transpose();
-      const Vec3 b(m.dot(p[c]) + thickness, plane_normal[before].dot(p[c]), plane_normal[c].dot(p[c]));
-      top[c] = a.colPivHouseholderQr().solve(b);
-      if (!top[c].allFinite()) top[c] = p[c] + thickness * m;
-    }
-    // The top face must keep every edge's direction and the panel's orientation.
+    // Each corner where the bottom (height 0) or top (height T) plane meets the two side faces at it.
+    auto corners_at = [&](double height) {
+      std::vector<Vec3> out(n);
+      for (std::size_t c = 0; c < n; ++c) {
+        const std::size_t before = (c + n - 1) % n;
+        Eigen::Matrix3d a;
+        a.row(0) = m.transpose();
+        a.row(1) = plane_normal[before].transpose();
+        a.row(2) = plane_normal[c].transpose();
+        const Vec3 b(m.dot(p[c]) + height, plane_offset[before], plane_offset[c]);
+        out[c] = a.colPivHouseholderQr().solve(b);
+        if (!out[c].allFinite()) out[c] = p[c] + height * m;
+      }
+      return out;
+    };
+    std::vector<Vec3> top = corners_at(thickness);
+    std::vector<Vec3> bottom = hinge_gap > 0.0 ? corners_at(0.0) : p;
+    // The top and bottom faces must keep every edge's direction and the panel's orientation.
     for (std::size_t e = 0; e < n; ++e) {
       const Vec3 d = p[(e + 1) % n] - p[e];
-      if (!((top[(e + 1) % n] - top[e]).dot(d) > 0.0) || !(area_vector(top).dot(normal) > 0.0)) {
-        throw InvalidInputError("--thickness", "a plate " + format_number(thickness) + " thick does not fit on " +
-                                                   describe(panel_id(k), assembly.member_count() > 1) +
-                                                   ": its bevelled top face vanishes (a thinner plate, or a wider panel)");
+      for (const std::vector<Vec3>* face : {&bottom, &top}) {
+        const std::vector<Vec3>& f = *face;
+        if (!((f[(e + 1) % n] - f[e]).dot(d) > 0.0) || !(area_vector(f).dot(normal) > 0.0)) {
+          const bool gap = face == &bottom;
+          throw InvalidInputError(gap ? "--hinge-gap" : "--thickness",
+                                  gap ? "a hinge gap of " + format_number(hinge_gap) + " leaves nothing of " +
+                                            describe(panel_id(k), assembly.member_count() > 1) + " (a smaller gap)"
+                                      : "a plate " + format_number(thickness) + " thick does not fit on " +
+                                            describe(panel_id(k), assembly.member_count() > 1) +
+                                            ": its bevelled top face vanishes (a thinner plate, or a wider panel)");
+        }
       }
     }
     // The frame at t*, and everything in it.
     const Eigen::Matrix3d r = frame(plate, x0);
     const Vec3 origin = x0[plate.corners[0]];
     for (Vec3& q : plate.bottom) q = r.transpose() * (q - origin);
+    plate.panel = plate.bottom;
+    for (Vec3& q : bottom) q = r.transpose() * (q - origin);
     for (Vec3& q : top) q = r.transpose() * (q - origin);
+    plate.bottom = bottom;
     plate.top = top;
     // Convex pieces: the whole plate, or the two halves of a dart along its inner diagonal.
     std::vector<std::vector<std::size_t>> pieces;
-    if (n == 4 && panel_shape({p[0], p[1], p[2], p[3]}) == PanelShape::non_convex) {
-      const std::array<double, 4> turns = corner_turns({p[0], p[1], p[2], p[3]}, normal);
+    const std::vector<Vec3>& c = plate.panel;  // in the frame: its normal is +z
+    if (n == 4 && panel_shape({c[0], c[1], c[2], c[3]}) == PanelShape::non_convex) {
+      const std::array<double, 4> turns = corner_turns({c[0], c[1], c[2], c[3]}, Vec3::UnitZ());
       const std::size_t reflex = static_cast<std::size_t>(std::min_element(turns.begin(), turns.end()) - turns.begin());
       pieces = {{reflex, (reflex + 1) % 4, (reflex + 2) % 4}, {(reflex + 2) % 4, (reflex + 3) % 4, reflex}};
     } else {

@@ -91,7 +91,7 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
     const std::size_t k = found->second;
     Polygon2 outline = distinct(piece.panels[0].outline);
     if (signed_area2(outline) < 0.0) std::reverse(outline.begin(), outline.end());
-    const Polygon2 top = on_sheet(plates.bottom(k), plates.top(k), outline, scale);
+    const Polygon2 top = on_sheet(plates.panel_corners(k), plates.top(k), outline, scale);
     if (top.size() != outline.size()) continue;
     piece.cut = grown(top, 0.5 * kerf_mm);
     // Labels inside the top face: the seams along their hinge edges (matched to

@@ -53,6 +53,8 @@ struct ThickOptions {
   std::size_t samples_per_side = 0;
   /// Penetration that counts, relative to the model size (touching is not a collision).
   double relative_tolerance = 1e-9;
+  /// ThickPlates' hinge gap (model units).
+  double hinge_gap = 0.0;
 };
 
 /// A closed triangle mesh: one plate's solid, outward-oriented.
@@ -71,7 +73,12 @@ class ThickPlates {
   /// interval, containing t*. Throws InvalidInputError("--thickness") when T is
   /// not positive and finite, or when a plate's top face vanishes (T too large
   /// for that panel, named).
-  ThickPlates(const Design& design, double thickness, PlateSide side, std::pair<double, double> range);
+  /// `hinge_gap` (model units, >= 0): each plate's side faces at its hinges
+  /// moved into it by half the gap, so that a gap this wide separates two plates
+  /// at each hinge (for a tape, fabric or printed film hinge across it); the
+  /// plates' bottoms are then the panels less the gap.
+  ThickPlates(const Design& design, double thickness, PlateSide side, std::pair<double, double> range,
+              double hinge_gap = 0.0);
 
   std::size_t plates() const { return plates_.size(); }
   double thickness() const { return thickness_; }
@@ -86,8 +93,10 @@ class ThickPlates {
   const Design& design() const { return design_; }
   const AssemblyMesh& mesh() const { return mesh_; }
 
-  /// Plate k's bottom (the panel) and top faces in its frame (corner 0 at the
-  /// origin, the panel in the xy-plane, its right-handed normal +z), corner by corner.
+  /// Plate k's panel, bottom (the panel, less the hinge gap) and top faces in
+  /// its frame (the panel's corner 0 at the origin, the panel in the xy-plane,
+  /// its right-handed normal +z), corner by corner.
+  const std::vector<Vec3>& panel_corners(std::size_t k) const { return plates_[k].panel; }
   const std::vector<Vec3>& bottom(std::size_t k) const { return plates_[k].bottom; }
   const std::vector<Vec3>& top(std::size_t k) const { return plates_[k].top; }
   /// Plate k's bevel angle at edge e (corner e to e + 1), radians.
@@ -122,7 +131,8 @@ class ThickPlates {
     std::size_t face = 0;
     std::vector<std::size_t> corners;  ///< mesh vertices, 3 or 4 distinct
     std::array<int, 3> anchor{};      ///< corners that fix the frame: origin, along, normal
-    std::vector<Vec3> bottom, top;    ///< in the frame (bottom: the panel)
+    std::vector<Vec3> panel, bottom, top;  ///< in the frame (bottom: the panel less the hinge gap)
+    std::vector<bool> hinge;          ///< per edge: a hinge (not the boundary)
     std::vector<Piece> pieces;
     std::vector<double> bevel;        ///< per edge k (corner k to k + 1)
     std::vector<double> ceiling;      ///< per edge: the largest bevel t* allows (the floor's cap)
@@ -173,6 +183,7 @@ struct ThickReport {
   std::size_t plates = 0, samples = 0, members = 1;
   double smallest_bevel = 0.0;  ///< radians
   double volume = 0.0, panel_area = 0.0;
+  double hinge_gap = 0.0;
   bool collision_free_at_t_star() const { return !at_t_star; }
   nlohmann::json to_json() const;
 };
