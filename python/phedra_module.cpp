@@ -19,6 +19,8 @@
 #include "phedra/repair.h"
 #include "phedra/optimize.h"
 #include "phedra/panel_size.h"
+#include "phedra/solid_export.h"
+#include "phedra/thick_plates.h"
 
 #include <nlohmann/json.hpp>
 #include <pybind11/numpy.h>
@@ -143,6 +145,11 @@ class PyDesign {
     return to_python(assess_buildability(*design_, &preset_object(preset_), options).to_json());
   }
 
+  /// Thick plates as `phedra check --thickness` has them (the report as a dict).
+  py::object thick(double thickness, const std::string& side, double hinge_gap) const {
+    return to_python(thick_report(thickness, side, hinge_gap).to_json());
+  }
+
   py::object metrics(std::size_t samples, const std::string& axes) const {
     MetricsOptions options;
     options.samples = samples;
@@ -258,10 +265,22 @@ class PyDesign {
 
   /// Writes the design: .glb / .gltf (animated), .fold (frames over the
   /// interval), .json (the motion document), .obj / .ply (at t, default t*).
-  void export_to(const std::string& path, std::size_t count, std::optional<double> t) const {
+  void export_to(const std::string& path, std::size_t count, std::optional<double> t, std::optional<double> thickness,
+                 const std::string& side, double hinge_gap) const {
     const std::string extension = std::filesystem::path(path).extension().string();
     std::string bytes;
-    if (extension == ".glb" || extension == ".gltf") {
+    if (thickness) {  // thick plates as solids, as `phedra generate --thickness`
+      if (!is_solid_format(extension)) {
+        throw InvalidInputError("thickness", "thick plates are written as solids: .stl, .3mf or .obj (not \"" + extension + "\")");
+      }
+      const ThickReport report = thick_report(*thickness, side, hinge_gap);
+      const ThickPlates plates = thick_plates(*design_, report);
+      std::vector<std::string> names;
+      for (std::size_t k = 0; k < plates.plates(); ++k) names.push_back("plate_" + std::to_string(plates.panel(k)));
+      bytes = solid_bytes(plates.solids(plates.positions(t.value_or(document_.t_star))), names, extension);
+    } else if (extension == ".stl" || extension == ".3mf") {
+      throw InvalidInputError("thickness", "an " + extension.substr(1) + " file holds solids: give the plate thickness");
+    } else if (extension == ".glb" || extension == ".gltf") {
       GltfOptions options;
       options.binary = extension == ".glb";
       if (t) options.static_t = *t;
@@ -280,12 +299,21 @@ class PyDesign {
     } else if (extension == ".obj" || extension == ".ply") {
       bytes = mesh_text(*design_, t.value_or(document_.t_star), extension);
     } else {
-      throw InvalidInputError("path", "\"" + path + "\": the formats are .glb, .gltf, .fold, .json, .obj and .ply");
+      throw InvalidInputError("path", "\"" + path + "\": the formats are .glb, .gltf, .fold, .json, .obj and .ply (and "
+                                      ".stl, .3mf, .obj with a thickness)");
     }
     write_file_atomically(path, bytes);
   }
 
  private:
+  ThickReport thick_report(double thickness, const std::string& side, double hinge_gap) const {
+    ThickOptions options;
+    options.thickness = thickness;
+    options.side = plate_side_from_string(side);
+    options.hinge_gap = hinge_gap;
+    return check_thickness(*design_, assess_buildability(*design_), options);
+  }
+
   json preset_;
   std::string source_;
   std::shared_ptr<Design> design_;
@@ -367,8 +395,13 @@ PYBIND11_MODULE(phedra, m) {
            py::arg("tol") = 0.02, py::arg("axes") = "structural", py::arg("max_seconds") = 60.0, py::arg("seed") = 1u,
            "The nearest design whose figures meet the targets ('poisson.nu_12=-0.8', a list of them, or a dict of "
            "equalities) and/or that passes near fit points: (Design or None, result dict) as phedra optimize")
+      .def("thick", &PyDesign::thick, py::arg("thickness"), py::arg("side") = "auto", py::arg("hinge_gap") = 0.0,
+           "Thick plates as `phedra check --thickness` has them: side, bevels, volume, the thick interval and what "
+           "ends it (a dict)")
       .def("export", &PyDesign::export_to, py::arg("path"), py::arg("count") = 41, py::arg("t") = py::none(),
-           "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, default t*)")
+           py::arg("thickness") = py::none(), py::arg("side") = "auto", py::arg("hinge_gap") = 0.0,
+           "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, "
+           "default t*); with a thickness, the plates as solids at t: .stl, .3mf or .obj")
       .def("__repr__", [](const PyDesign& d) {
         return "<phedra.Design '" + d.name() + "': " + d.kind() + ", " + std::to_string(d.vertex_count()) + " vertices>";
       });

@@ -163,8 +163,31 @@ def test_export_writes_what_the_command_writes(tmp_path):
     assert np.max(np.abs(np.asarray(doc["samples"][0]["vertices"]) - d.evaluate(d.flexion_interval[0]))) < 1e-12 * d.info()["model_size"]
     with pytest.raises(phedra.InputError) as e:
         d.export(str(tmp_path / "tube.stl"))
-    assert e.value.field == "path"
+    assert e.value.field == "thickness"
     assert not (tmp_path / "tube.stl").exists()
+    with pytest.raises(phedra.InputError) as e:
+        d.export(str(tmp_path / "tube.xyz"))
+    assert e.value.field == "path"
+
+
+def test_thick_plates_as_the_command_has_them(tmp_path):
+    d = phedra.load(preset("parallelogram-tube.json"))
+    report = d.thick(0.08, side="front", hinge_gap=0.02)
+    command = json.loads(cli("check", preset("parallelogram-tube.json"), "--thickness", "0.08", "--plate-side", "front",
+                             "--hinge-gap", "0.02", "--json").stdout)["thick"]
+    assert report["plates"] == command["plates"] == 40
+    assert report["thick_interval"] == pytest.approx(command["thick_interval"], abs=1e-12)
+    assert report["volume"] == pytest.approx(command["volume"], rel=1e-12)
+    d.export(str(tmp_path / "plates.stl"), thickness=0.08, side="front", hinge_gap=0.02)
+    assert cli("generate", preset("parallelogram-tube.json"), "--thickness", "0.08", "--plate-side", "front",
+               "--hinge-gap", "0.02", "-o", str(tmp_path / "command.stl")).returncode == 0
+    assert (tmp_path / "plates.stl").read_bytes()[80:] == (tmp_path / "command.stl").read_bytes()[80:]
+    with pytest.raises(phedra.InputError) as e:
+        d.thick(0.08, side="up")
+    assert e.value.field == "--plate-side"
+    with pytest.raises(phedra.InputError) as e:
+        d.export(str(tmp_path / "plates.glb"), thickness=0.08)
+    assert e.value.field == "thickness"
 
 
 def test_the_example_sweeps_and_plots(tmp_path):
