@@ -68,6 +68,7 @@ void add_check_command(CLI::App& app, Context& context) {
     if (std::optional<ThickOptions> plates = thick_options(loaded.design, options->thickness)) {
       if (!buildability) throw InvalidInputError("--thickness", "the thick plates need buildability; drop --geometry-only");
       plates->samples_per_side = options->buildability.sweep.samples_per_side;  // as the zero-thickness sweep
+      plates->find_thickest = true;
       thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();

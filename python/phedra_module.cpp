@@ -147,7 +147,7 @@ class PyDesign {
 
   /// Thick plates as `phedra check --thickness` has them (the report as a dict).
   py::object thick(double thickness, const std::string& side, double hinge_gap) const {
-    return to_python(thick_report(thickness, side, hinge_gap).to_json());
+    return to_python(thick_report(thickness, side, hinge_gap, true).to_json());
   }
 
   py::object metrics(std::size_t samples, const std::string& axes) const {
@@ -306,8 +306,9 @@ class PyDesign {
   }
 
  private:
-  ThickReport thick_report(double thickness, const std::string& side, double hinge_gap) const {
+  ThickReport thick_report(double thickness, const std::string& side, double hinge_gap, bool thickest = false) const {
     ThickOptions options;
+    options.find_thickest = thickest;
     options.thickness = thickness;
     options.side = plate_side_from_string(side);
     options.hinge_gap = hinge_gap;

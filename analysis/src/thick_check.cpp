@@ -6,6 +6,7 @@
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <numbers>
@@ -92,6 +93,33 @@ ThickReport check_side(const Design& design, const BuildabilityReport& thin, con
   return r;
 }
 
+/// Plates `thickness` thick fit at t*: every plate has a top face and none collides there.
+bool fits_at_t_star(const Design& design, double thickness, PlateSide side, std::pair<double, double> bevel, double gap) {
+  try {
+    const ThickPlates plates(design, thickness, side, bevel, gap);
+    const Points x = plates.positions(design.assembly.t_star());
+    const std::vector<double> openings = plates.openings(x);
+    std::vector<double> next;
+    return !plates.collision(x, openings, next);
+  } catch (const InvalidInputError&) {
+    return false;
+  }
+}
+
+/// The thickest plates that fit at t* (to 1 %), by bisection of the thickness's
+/// logarithm between 1e-4 and 0.5 of the model size; 0 when not even the thinnest fit.
+double thickest_at_t_star(const Design& design, PlateSide side, std::pair<double, double> bevel, double gap) {
+  const double size = design.assembly.model_size();
+  double lo = 1e-4 * size, hi = 0.5 * size;
+  if (!fits_at_t_star(design, lo, side, bevel, gap)) return 0.0;
+  if (fits_at_t_star(design, hi, side, bevel, gap)) return hi;
+  while (hi / lo > 1.01) {
+    const double mid = std::sqrt(lo * hi);
+    (fits_at_t_star(design, mid, side, bevel, gap) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 double width_of(const ThickReport& r) { return r.at_t_star ? -1.0 : r.thick_upper - r.thick_lower; }
 
 std::string describe_limit(const ThickLimit& l, bool several) {
@@ -115,19 +143,35 @@ nlohmann::json limit_json(const std::optional<ThickLimit>& l, bool several) {
 }  // namespace thick_detail
 using namespace thick_detail;
 
+namespace {
+/// The side with the wider thick interval (`automatic`).
+ThickReport better_side(const Design& design, const BuildabilityReport& thin, const ThickOptions& options,
+                        std::pair<double, double> free);
+}  // namespace
+
 ThickReport check_thickness(const Design& design, const BuildabilityReport& thin, const ThickOptions& options) {
   const std::optional<std::pair<double, double>> free = thin.interval();
   if (!free) {
     throw InvalidInputError("--thickness", "the design is not buildable at t* without thickness (" + thin.summary() +
                                                "): there are no panels to thicken");
   }
-  if (options.side != PlateSide::automatic) return check_side(design, thin, options, options.side, *free);
+  ThickReport r = options.side != PlateSide::automatic ? check_side(design, thin, options, options.side, *free)
+                                                        : better_side(design, thin, options, *free);
+  if (options.find_thickest) {
+    r.thickest = thickest_at_t_star(design, r.side, {r.bevel_lower, r.bevel_upper}, options.hinge_gap);
+  }
+  return r;
+}
+
+namespace {
+ThickReport better_side(const Design& design, const BuildabilityReport& thin, const ThickOptions& options,
+                        std::pair<double, double> free) {
   // A side whose plates do not fit (a top face vanishes) leaves the other one.
   std::optional<ThickReport> front, back;
   std::optional<InvalidInputError> misfit;
   for (const PlateSide side : {PlateSide::front, PlateSide::back}) {
     try {
-      (side == PlateSide::front ? front : back) = check_side(design, thin, options, side, *free);
+      (side == PlateSide::front ? front : back) = check_side(design, thin, options, side, free);
     } catch (const InvalidInputError& e) {
       if (!misfit) misfit = e;
     }
@@ -137,6 +181,7 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
   if (!back) return *front;
   return width_of(*back) > width_of(*front) ? *back : *front;
 }
+}  // namespace
 
 ThickPlates thick_plates(const Design& design, const ThickReport& report) {
   return ThickPlates(design, report.thickness, report.side, {report.bevel_lower, report.bevel_upper}, report.hinge_gap);
@@ -151,6 +196,7 @@ nlohmann::json ThickReport::to_json() const {
                       {"volume", volume},
                       {"panel_area", panel_area},
                       {"hinge_gap", hinge_gap},
+                      {"thickest_at_t_star", thickest ? nlohmann::json(*thickest) : nlohmann::json(nullptr)},
                       {"samples", samples},
                       {"at_t_star", limit_json(at_t_star, members > 1)},
                       {"lower", limit_json(lower, members > 1)},
@@ -166,6 +212,10 @@ std::ostream& operator<<(std::ostream& out, const ThickReport& r) {
       << "] (smallest " << format_human(r.smallest_bevel * 180.0 / std::numbers::pi) << " degrees)\n";
   out << "  volume " << format_human(r.volume) << " (thickness x panel area " << format_human(r.thickness * r.panel_area)
       << ")\n";
+  if (r.thickest) {
+    out << "  the thickest plates that fit at t* on this side: " << format_human(*r.thickest)
+        << (*r.thickest > 0.0 ? " (to 1 %)" : " (none: even 1e-4 of the model size collide)") << '\n';
+  }
   if (r.at_t_star) {
     out << "  at t* = " << format_human(r.t_star) << ": " << describe_limit(*r.at_t_star, several) << '\n';
     return out;

@@ -291,9 +291,9 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
     plate.top = top;
     // Convex pieces: the whole plate, or the two halves of a dart along its inner diagonal.
     std::vector<std::vector<std::size_t>> pieces;
-    const std::vector<Vec3>& c = plate.panel;  // in the frame: its normal is +z
-    if (n == 4 && panel_shape({c[0], c[1], c[2], c[3]}) == PanelShape::non_convex) {
-      const std::array<double, 4> turns = corner_turns({c[0], c[1], c[2], c[3]}, Vec3::UnitZ());
+    const std::vector<Vec3>& pc = plate.panel;  // in the frame: its normal is +z
+    if (n == 4 && panel_shape({pc[0], pc[1], pc[2], pc[3]}) == PanelShape::non_convex) {
+      const std::array<double, 4> turns = corner_turns({pc[0], pc[1], pc[2], pc[3]}, Vec3::UnitZ());
       const std::size_t reflex = static_cast<std::size_t>(std::min_element(turns.begin(), turns.end()) - turns.begin());
       pieces = {{reflex, (reflex + 1) % 4, (reflex + 2) % 4}, {(reflex + 2) % 4, (reflex + 3) % 4, reflex}};
     } else {

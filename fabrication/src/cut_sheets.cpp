@@ -318,7 +318,7 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
     for (const Piece& piece : s.pieces) {
       if (piece.cut) s.cut_area_mm2 += 0.5 * std::abs(signed_area2(*piece.cut));
     }
-    for (SheetPage& page : sheets::assembly_pages(s)) s.pages.push_back(std::move(page));
+    for (SheetPage& assembly : sheets::assembly_pages(s)) s.pages.push_back(std::move(assembly));
   }
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {

@@ -178,6 +178,7 @@ def test_thick_plates_as_the_command_has_them(tmp_path):
     assert report["plates"] == command["plates"] == 40
     assert report["thick_interval"] == pytest.approx(command["thick_interval"], abs=1e-12)
     assert report["volume"] == pytest.approx(command["volume"], rel=1e-12)
+    assert report["thickest_at_t_star"] == pytest.approx(command["thickest_at_t_star"], rel=1e-12)
     d.export(str(tmp_path / "plates.stl"), thickness=0.08, side="front", hinge_gap=0.02)
     assert cli("generate", preset("parallelogram-tube.json"), "--thickness", "0.08", "--plate-side", "front",
                "--hinge-gap", "0.02", "-o", str(tmp_path / "command.stl")).returncode == 0

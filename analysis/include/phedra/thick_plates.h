@@ -55,6 +55,8 @@ struct ThickOptions {
   double relative_tolerance = 1e-9;
   /// ThickPlates' hinge gap (model units).
   double hinge_gap = 0.0;
+  /// Also find the thickest plates that fit at t* (ThickReport::thickest).
+  bool find_thickest = false;
 };
 
 /// A closed triangle mesh: one plate's solid, outward-oriented.
@@ -184,6 +186,9 @@ struct ThickReport {
   double smallest_bevel = 0.0;  ///< radians
   double volume = 0.0, panel_area = 0.0;
   double hinge_gap = 0.0;
+  /// With find_thickest: the thickest plates on this side that fit at t* (a
+  /// top face on every plate, none colliding there), to 1 %; 0 when none does.
+  std::optional<double> thickest;
   bool collision_free_at_t_star() const { return !at_t_star; }
   nlohmann::json to_json() const;
 };
