@@ -159,6 +159,17 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
                                                         : better_side(design, thin, options, *free);
   if (options.find_thickest) {
     r.thickest = thickest_at_t_star(design, r.side, {r.bevel_lower, r.bevel_upper}, options.hinge_gap);
+    if (options.side == PlateSide::automatic && r.at_t_star) {
+      // Both sides collide at t*: the side that carries the thicker plates.
+      const PlateSide other = r.side == PlateSide::front ? PlateSide::back : PlateSide::front;
+      try {
+        ThickReport o = check_side(design, thin, options, other, *free);
+        o.thickest = thickest_at_t_star(design, other, {o.bevel_lower, o.bevel_upper}, options.hinge_gap);
+        if (*o.thickest > *r.thickest) r = o;
+      } catch (const InvalidInputError&) {
+        // its plates do not fit: this side stays
+      }
+    }
   }
   return r;
 }
