@@ -17,6 +17,9 @@
 #include "phedra/mesh_export.h"
 #include "phedra/motion_document.h"
 #include "phedra/preset.h"
+#include "phedra/buildability.h"
+#include "phedra/solid_export.h"
+#include "phedra/thick_plates.h"
 #include "phedra/design_preset.h"
 #include "phedra/developed_preset.h"
 
@@ -108,6 +111,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const CutSheets sheets = cut_sheets(design);
     cut_sheets_dxf(sheets);
     sheet_page_svg(sheets, 0);
+    // Thick plates (a thickness up to 2 % of the model size from the input): every
+    // solid finite and closed with a positive volume, the STL written, plate sheets
+    // (one input in sixteen, small designs, one side: the other stages keep their pace).
+    if (a.total_vertex_count() > 80 || fraction(data, size, 9) >= 1.0 / 16.0) return 0;
+    ThickOptions thick;
+    thick.side = fraction(data, size, 8) < 0.5 ? PlateSide::front : PlateSide::back;
+    thick.thickness = (0.001 + 0.02 * fraction(data, size, 7)) * a.model_size();
+    thick.samples_per_side = 6;
+    BuildabilityOptions quick;
+    quick.sweep.samples_per_side = 8;
+    const ThickReport r = check_thickness(design, assess_buildability(design, nullptr, quick), thick);
+    must(r.at_t_star || (r.thick_lower <= r.t_star && r.t_star <= r.thick_upper));
+    const ThickPlates plates = thick_plates(design, r);
+    const std::vector<Solid> solids = plates.solids(plates.positions(a.t_star()));
+    for (const Solid& solid : solids) {
+      for (const Vec3& p : solid.vertices) must(p.allFinite());
+      must(solid.volume() > 0.0);
+    }
+    solid_bytes(solids, std::vector<std::string>(solids.size(), "plate"), ".stl");
+    CutSheetOptions plate_sheets;
+    plate_sheets.plates = PlateCut{3.0, 0.2, thick.side};
+    cut_sheets(design, plate_sheets);
   } catch (const Error&) {
     // A clear answer to a bad input (or an internal error refusing a non-finite
     // number, which the writers raise on purpose: treat as a finding).
