@@ -52,7 +52,7 @@ void add_outlines_command(CLI::App& app, Context& context) {
       "layers CUT, MOUNTAIN, VALLEY, TAB_FOLD, LABELS)");
   add_preset_argument(sub, o->preset);
   sub->add_option("-o,--output", o->output, "Output file: .pdf, .svg, .png or .dxf")->required();
-  sub->add_option("--pieces", o->pieces,
+  CLI::Option* pieces = sub->add_option("--pieces", o->pieces,
                   "strips (the panels between two profiles), columns (along the trajectory), cells (each member of "
                   "an array on its own, walls glued face to face) or panels (one by one)")
       ->capture_default_str();
@@ -79,7 +79,7 @@ void add_outlines_command(CLI::App& app, Context& context) {
   sub->add_option("--plate-side", o->plate_side, "With --thickness-mm: front, back or auto (as phedra check)")
       ->check(CLI::IsMember({"auto", "front", "back"}))
       ->capture_default_str();
-  sub->callback([o, scale, &context] {
+  sub->callback([o, scale, pieces, &context] {
     const std::string ext = std::filesystem::path(o->output).extension().string();
     if (ext != ".svg" && ext != ".dxf" && ext != ".pdf" && ext != ".png") {
       throw InvalidInputError("output", "unknown format \"" + ext + "\" (use .pdf, .svg, .png or .dxf)");
@@ -88,6 +88,10 @@ void add_outlines_command(CLI::App& app, Context& context) {
     o->sheets.page = page_size_from_string(o->page);
     if (scale->count() > 0) o->sheets.scale = o->scale;
     if (!(o->sheets.model_mm > 0.0)) throw InvalidInputError("--model-size", "must be a positive number of mm");
+    if (o->thickness_mm && pieces->count() > 0 && o->sheets.mode != PieceMode::panels) {
+      throw InvalidInputError("--pieces", "plates cut from sheet material are one piece each (--thickness-mm): "
+                                          "drop --pieces or use panels");
+    }
     if (o->thickness_mm) {
       o->sheets.plates = PlateCut{*o->thickness_mm, o->kerf_mm, plate_side_from_string(o->plate_side)};
     } else if (o->kerf_mm != 0.0) {

@@ -127,6 +127,7 @@ void verify(const Design& design, double thickness, std::size_t samples) {
   }
   CHECK(volume == Approx(report.volume).epsilon(1e-9));
   CHECK(volume <= thickness * report.panel_area * (1.0 + 1e-9));
+  CHECK(volume >= 0.8 * thickness * report.panel_area);  // bevels and floors take at most a fifth
   if (report.at_t_star) return;
   // Inside the thick interval no two solids cross; just past a plates limit some do.
   for (std::size_t k = 0; k <= samples; ++k) {
@@ -454,6 +455,9 @@ TEST_CASE("thick plates on cut sheets: the command, its files and its errors", "
   CHECK(kerf.code == 2);
   CHECK_THAT(kerf.err, Contains("--kerf: a kerf is for plates cut from sheet material"));
   CHECK(test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "--kerf", "-1", "-o", (dir.path / "k.pdf").string()}).code == 2);
+  const test::Run strips = test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "--pieces", "strips", "-o", (dir.path / "k.pdf").string()});
+  CHECK(strips.code == 2);
+  CHECK_THAT(strips.err, Contains("--pieces: plates cut from sheet material are one piece each"));
   const test::Run thick = test::phedra_cli({"outlines", tube, "--thickness-mm", "80", "-o", (dir.path / "k.pdf").string()});
   CHECK(thick.code == 2);
   CHECK_THAT(thick.err, Contains("does not fit on panel"));

@@ -165,7 +165,8 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
       try {
         ThickReport o = check_side(design, thin, options, other, *free);
         o.thickest = thickest_at_t_star(design, other, {o.bevel_lower, o.bevel_upper}, options.hinge_gap);
-        if (*o.thickest > *r.thickest) r = o;
+        const bool tie = std::abs(*o.thickest - *r.thickest) <= 0.01 * std::max(*o.thickest, *r.thickest);
+        if ((!tie && *o.thickest > *r.thickest) || (tie && o.volume > r.volume)) r = o;
       } catch (const InvalidInputError&) {
         // its plates do not fit: this side stays
       }
@@ -190,7 +191,10 @@ ThickReport better_side(const Design& design, const BuildabilityReport& thin, co
   if (!front && !back) throw *misfit;
   if (!front) return *back;
   if (!back) return *front;
-  return width_of(*back) > width_of(*front) ? *back : *front;
+  // The wider thick interval; on a tie (both collide at t*, or both reach as far) the more material.
+  const double front_width = width_of(*front), back_width = width_of(*back);
+  if (back_width != front_width) return back_width > front_width ? *back : *front;
+  return back->volume > front->volume ? *back : *front;
 }
 }  // namespace
 

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Thick plates (generate --thickness) as binary STL in Blender (Debian's,
-# headless): three presets' plates imported by every STL importer Blender has;
-# one closed, consistently wound, outward solid a plate, as many as phedra wrote,
-# and the volume phedra printed (tests/blender/stl_in_blender.py).
+# headless): every shipped preset that can be built (not the anti-parallelogram
+# ones), plates 1 % of its size thick (--thickness-mm 1 --model-size 100),
+# imported by every STL importer Blender has; one closed, consistently wound,
+# outward solid a plate, as many as phedra wrote, and the volume phedra printed
+# (tests/blender/stl_in_blender.py).
 # usage: tests/blender/check_stl.sh PHEDRA_BINARY
 set -euo pipefail
 phedra="$1"
@@ -11,9 +13,13 @@ command -v blender >/dev/null || { echo "blender is not installed (scripts/setup
 out="$(mktemp -d)"
 trap 'rm -rf "$out"' EXIT
 args=()
-for c in "parallelogram-tube 0.08 40" "grid-3x3 0.0707 216" "default 0.08 56"; do
-  read -r name thickness plates <<<"$c"
-  said="$("$phedra" generate "$top/presets/$name.json" --thickness "$thickness" -o "$out/$name.stl")"
-  args+=("$out/$name.stl" "$plates" "$(sed -n 's/.*, volume \([^ ]*\) .*/\1/p' <<<"$said")")
+for preset in "$top"/presets/*.json; do
+  name="$(basename "$preset" .json)"
+  [[ "$name" == preset.schema || "$name" == anti-parallelogram* ]] && continue
+  said="$("$phedra" generate "$preset" --thickness-mm 1 --model-size 100 -o "$out/$name.stl" 2>/dev/null)"
+  plates="$(sed -n 's/^wrote [^:]*: \([0-9]*\) plates .*/\1/p' <<<"$said")"
+  volume="$(sed -n 's/.*, volume \([^ ]*\) .*/\1/p' <<<"$said")"
+  [[ -n "$plates" && -n "$volume" ]] || { echo "phedra generate $name --thickness-mm 1 said: $said"; exit 1; }
+  args+=("$out/$name.stl" "$plates" "$volume")
 done
 blender -b --factory-startup --python-exit-code 1 -P "$top/tests/blender/stl_in_blender.py" -- "${args[@]}"
