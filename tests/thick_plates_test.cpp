@@ -356,6 +356,39 @@ TEST_CASE("thick plates: generate writes STL, 3MF and OBJ solids", "[thick][cli]
   CHECK_THAT(obj, Contains("o plate_39"));
 }
 
+TEST_CASE("thick plates: sample --thickness adds the plates at every t, on the panels", "[thick][cli]") {
+  const std::string tube = presets + "/parallelogram-tube.json";
+  const test::Run run = test::phedra_cli({"sample", tube, "--count", "5", "--thickness", "0.08"});
+  REQUIRE(run.code == 0);
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  const nlohmann::json& plates = j["plates"];
+  CHECK(plates["thickness"] == 0.08);
+  CHECK(plates["side"] == "front");
+  REQUIRE(plates["panels"].size() == 40);
+  REQUIRE(plates["samples"].size() == 5);
+  for (std::size_t s = 0; s < 5; ++s) {
+    CHECK(plates["samples"][s]["t"] == j["samples"][s]["t"]);
+    const nlohmann::json& motion = j["samples"][s]["vertices"];
+    for (std::size_t k = 0; k < 40; ++k) {
+      const nlohmann::json& vertices = plates["samples"][s]["vertices"][k];
+      const std::size_t corners = (plates["triangles"][k].size() + 4) / 4;  // 4n - 4 triangles
+      REQUIRE(vertices.size() == 2 * corners);
+      const nlohmann::json& face = j["faces"][plates["panels"][k].get<std::size_t>()];
+      for (std::size_t c = 0; c < corners; ++c) {  // the bottom: corners of the panel at that t
+        double nearest = 1e300;
+        for (const auto& v : face) {
+          const nlohmann::json& m = motion[v.get<std::size_t>()];
+          nearest = std::min(nearest, std::hypot(vertices[c][0].get<double>() - m[0].get<double>(),
+                                                 vertices[c][1].get<double>() - m[1].get<double>(),
+                                                 vertices[c][2].get<double>() - m[2].get<double>()));
+        }
+        CHECK(nearest < 1e-9);
+      }
+    }
+  }
+  CHECK(test::phedra_cli({"sample", tube, "--count", "5", "--thickness", "0"}).code == 2);
+}
+
 TEST_CASE("thick plates: errors", "[thick][cli]") {
   test::TempDir dir("thick-errors");
   const std::string tube = presets + "/parallelogram-tube.json";
