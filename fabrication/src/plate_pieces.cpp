@@ -95,10 +95,11 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
     if (top.size() != outline.size()) continue;
     piece.cut = grown(top, 0.5 * kerf_mm);
     // Labels inside the top face: the seams along their hinge edges (matched to
-    // the outline's edge by direction), then the piece's name.
-    piece.labels.clear();
-    std::vector<Box2> taken;
+    // the outline's edge by direction), then the piece's name. On a small plate
+    // they share the room: one cap for the seam labels, the one that makes the
+    // smallest label (the name too, which a maker looks for first) largest.
     const Polygon2& panel_outline = piece.panels[0].outline;
+    std::vector<std::pair<std::string, std::size_t>> seams;  // text, edge of the top face
     for (const SeamSide& side : piece.seams) {
       const Vec2 a = panel_outline[side.edge], b = panel_outline[(side.edge + 1) % panel_outline.size()];
       std::size_t edge = 0;
@@ -110,14 +111,27 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
                            (1.0 - std::abs(d.dot((b - a).normalized())));
         if (off < nearest) nearest = off, edge = e;
       }
-      const std::string text = "S" + std::to_string(side.seam);
-      if (auto box = fit_label(top, edge, text, 2.6, taken)) {
-        taken.push_back(*box);
-        piece.labels.push_back(SheetText{text, *box, TextRole::seam});
-      }
+      seams.push_back({"S" + std::to_string(side.seam), edge});
     }
     const std::string name = std::to_string(piece.number) + " P" + std::to_string(piece.panels[0].panel);
-    if (auto box = fit_label(top, std::nullopt, name, 3.5, taken)) piece.labels.push_back(SheetText{name, *box, TextRole::panel});
+    double best_smallest = -1.0;
+    for (double cap : {2.6, 2.2, 1.9, 1.6, 1.3, 1.0, 0.7}) {
+      std::vector<SheetText> labels;
+      std::vector<Box2> taken;
+      double smallest = std::numeric_limits<double>::infinity();
+      for (const auto& [text, edge] : seams) {
+        const std::optional<Box2> box = fit_label(top, edge, text, cap, taken);
+        smallest = std::min(smallest, box ? box->height : 0.0);
+        if (!box) continue;
+        taken.push_back(*box);
+        labels.push_back(SheetText{text, *box, TextRole::seam});
+      }
+      const std::optional<Box2> box = fit_label(top, std::nullopt, name, 3.5, taken);
+      smallest = std::min(smallest, box ? box->height : 0.0);
+      if (box) labels.push_back(SheetText{name, *box, TextRole::panel});
+      if (smallest > best_smallest + 1e-9) best_smallest = smallest, piece.labels = std::move(labels);
+      if (smallest >= cap - 1e-9) break;  // every label at least the cap: a lower cap cannot do better
+    }
   }
 }
 
@@ -156,7 +170,7 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
       for (const std::string& text : std::vector<std::string>{
                "Plates " + sheet_number(s.thickness_mm) + " mm thick, " + std::to_string(s.pieces.size()) + " pieces; cut on the solid lines (kerf " +
                 sheet_number(s.kerf_mm) + " mm allowed for).",
-            "Lay each plate with the side shown on the sheet up. The dotted purple lines are the hinge lines: hinges go on the",
+            "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: hinges go on the",
             face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S<k> meets S<k>.",
             "Join the pieces in this order (a piece: its number, its panel, its page; then the earlier pieces it is hinged to):"}) {
         add_text(page, text, Vec2(m, y), h, TextRole::note);
