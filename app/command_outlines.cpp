@@ -140,6 +140,11 @@ void add_outlines_command(CLI::App& app, Context& context) {
                     << ", " << six(r.t_mu) << "]\n";
       }
     }
+    if (sheets.called_out > 0) {
+      context.out << "note: " << sheets.called_out << " label" << (sheets.called_out == 1 ? " is" : "s are")
+                  << " called out beside " << (sheets.called_out == 1 ? "its piece" : "their pieces")
+                  << " with a leader (no room for 2 mm inside the panel); a larger --scale or --model-size keeps them inside\n";
+    }
     if (sheets.untabbed_seams > 0) {
       context.out << "note: " << sheets.untabbed_seams << " seams have no room for a tab on either side: "
                   << "glue them with tape\n";
@@ -154,9 +159,9 @@ void add_outlines_command(CLI::App& app, Context& context) {
     for (const PanelDiagnosis& d : buildability.invalid) {
       if (d.shape != PanelShape::oversized && d.shape != PanelShape::sliver) red.push_back(d.panel);
     }
-    auto list = [](const std::vector<std::size_t>& panels) {
+    auto list = [](const std::vector<std::size_t>& numbers) {
       std::string text;
-      for (std::size_t k = 0; k < panels.size(); ++k) text += (k ? ", " : "") + std::to_string(panels[k]);
+      for (std::size_t k = 0; k < numbers.size(); ++k) text += (k ? ", " : "") + std::to_string(numbers[k]);
       return text;
     };
     if (!sheets.left_out.empty()) {

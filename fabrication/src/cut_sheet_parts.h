@@ -36,4 +36,18 @@ std::optional<Box2> fit_label(const Polygon2& outline, std::optional<std::size_t
 /// The same rectangle, read the other way when its text would be upside down (y up).
 Box2 upright(const Box2& box);
 
+/// A label with no room inside: an empty box at `anchor` (a point inside its
+/// panel: panel_anchor, seam_anchor) for call_out_small_labels.
+Box2 no_room(const Vec2& anchor);
+Vec2 panel_anchor(const Polygon2& region);
+Vec2 seam_anchor(const Polygon2& outline, std::size_t edge);
+/// How many of the labels are at least readable_label_mm high.
+std::size_t readable_inside(const std::vector<SheetText>& labels);
+
+/// Every label of the piece lower than readable_label_mm (2 mm) called out:
+/// readable_label_mm high beside the piece, clear of its panels, tabs and other
+/// labels, nearest to the point it names (its box's centre, or an empty box's
+/// origin), which its `leader` keeps.
+void call_out_small_labels(Piece& piece);
+
 }  // namespace phedra::sheets

@@ -20,6 +20,7 @@ const char* dxf_layer(LineStyle style) {
     case LineStyle::frame: return "FRAME";
     case LineStyle::axis: return "AXIS";
     case LineStyle::hinge: return "HINGE";
+    case LineStyle::leader: return "LABELS";  // marked with the labels, never cut
   }
   return "0";
 }

@@ -39,7 +39,7 @@ struct Placement {
 /// The piece's smallest box, long side across the page when it fits that way;
 /// when its smallest box fits neither way (its tabs made it wider), any
 /// direction that fits: a hull edge's, or one of 360 half-degree steps.
-Placement fitting(const std::vector<Vec2>& points, const Box2& content) {
+Placement fitting_points(const std::vector<Vec2>& points, const Box2& content) {
   auto fits = [&](const Placement& p) { return p.size().x() <= content.width + 1e-9 && p.size().y() <= content.height + 1e-9; };
   auto try_box = [&](const Box2& box, Placement& out) {
     for (bool turn : {box.height > box.width, box.height <= box.width}) {
@@ -66,6 +66,25 @@ Placement fitting(const std::vector<Vec2>& points, const Box2& content) {
                                       " mm fits the page in no direction");
 }
 
+/// The piece's placement with its called-out labels; when they make it too
+/// large for the page (a piece nearly a page long), they go back to 2 mm
+/// labels centred where they point, and the piece is placed without them.
+Placement fitting(Piece& piece, const Box2& content) {
+  try {
+    return fitting_points(piece.points(), content);
+  } catch (const Error&) {
+    bool any = false;
+    for (SheetText& t : piece.labels) {
+      if (!t.leader) continue;
+      t.box.origin = *t.leader - 0.5 * t.box.width * t.box.axis - 0.5 * t.box.height * t.box.up();
+      t.leader.reset();
+      any = true;
+    }
+    if (!any) throw;
+    return fitting_points(piece.points(), content);
+  }
+}
+
 void place(Piece& piece, const Placement& at) {
   if (piece.cut) {
     for (Vec2& c : *piece.cut) c = at.map(c);
@@ -83,6 +102,7 @@ void place(Piece& piece, const Placement& at) {
     label.box.origin = at.map(label.box.origin);
     label.box.axis = at.map_direction(label.box.axis);
     label.box = sheets::upright(label.box);
+    if (label.leader) label.leader = at.map(*label.leader);
   }
 }
 
@@ -225,6 +245,11 @@ std::vector<Vec2> Piece::points() const {
   for (const SeamSide& s : seams) {
     if (s.tab) out.insert(out.end(), s.tab->begin(), s.tab->end());
   }
+  for (const SheetText& t : labels) {  // (called out beside the piece: its room on the sheet too)
+    if (!t.leader) continue;
+    const Polygon2 c = t.box.corners();
+    out.insert(out.end(), c.begin(), c.end());
+  }
   return out;
 }
 
@@ -249,7 +274,7 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   std::vector<Placement> at(s.pieces.size());
   std::vector<std::size_t> order(s.pieces.size());
   for (std::size_t k = 0; k < s.pieces.size(); ++k) {
-    at[k] = fitting(s.pieces[k].points(), s.content);
+    at[k] = fitting(s.pieces[k], s.content);
     order[k] = k;
   }
   if (plates) {
@@ -302,6 +327,13 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
     for (const SheetText& t : piece.labels) {
       out.texts.push_back(t);
       s.smallest_label = std::min(s.smallest_label, t.box.height);
+      if (!t.leader) continue;
+      // A called-out label: a leader from a dot on the point it names to the label.
+      out.lines.push_back(SheetLine{*t.leader, nearest_point(t.box, *t.leader), LineStyle::leader});
+      const double r = 0.35;
+      out.fills.push_back(SheetFill{Polygon2{*t.leader + Vec2(-r, -r), *t.leader + Vec2(r, -r), *t.leader + Vec2(r, r), *t.leader + Vec2(-r, r)},
+                                    FillStyle::marker, std::nullopt});
+      ++s.called_out;
     }
     any_uncuttable = any_uncuttable || !piece.cuttable;
     s.folds += piece.folds.size();

@@ -114,24 +114,28 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
       seams.push_back({"S" + std::to_string(side.seam), edge});
     }
     const std::string name = std::to_string(piece.number) + " P" + std::to_string(piece.panels[0].panel);
-    double best_smallest = -1.0;
-    for (double cap : {2.6, 2.2, 1.9, 1.6, 1.3, 1.0, 0.7}) {
+    std::pair<std::size_t, double> best_score{0, -1.0};
+    bool first = true;
+    for (double cap : {2.6, 2.3, readable_label_mm}) {
       std::vector<SheetText> labels;
       std::vector<Box2> taken;
       double smallest = std::numeric_limits<double>::infinity();
       for (const auto& [text, edge] : seams) {
         const std::optional<Box2> box = fit_label(top, edge, text, cap, taken);
         smallest = std::min(smallest, box ? box->height : 0.0);
-        if (!box) continue;
-        taken.push_back(*box);
-        labels.push_back(SheetText{text, *box, TextRole::seam});
+        if (box) taken.push_back(*box);
+        labels.push_back(SheetText{text, box ? *box : no_room(seam_anchor(top, edge)), TextRole::seam});
       }
       const std::optional<Box2> box = fit_label(top, std::nullopt, name, 3.5, taken);
       smallest = std::min(smallest, box ? box->height : 0.0);
-      if (box) labels.push_back(SheetText{name, *box, TextRole::panel});
-      if (smallest > best_smallest + 1e-9) best_smallest = smallest, piece.labels = std::move(labels);
+      labels.push_back(SheetText{name, box ? *box : no_room(panel_anchor(top)), TextRole::panel});
+      const std::pair<std::size_t, double> score{readable_inside(labels), smallest};
+      if (first || score.first > best_score.first || (score.first == best_score.first && score.second > best_score.second + 1e-9)) {
+        best_score = score, piece.labels = std::move(labels), first = false;
+      }
       if (smallest >= cap - 1e-9) break;  // every label at least the cap: a lower cap cannot do better
     }
+    call_out_small_labels(piece);
   }
 }
 

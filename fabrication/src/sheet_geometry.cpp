@@ -139,4 +139,10 @@ Box2 minimum_box(const std::vector<Vec2>& points) {
   return best;
 }
 
+Vec2 nearest_point(const Box2& box, const Vec2& point) {
+  const Vec2 d = point - box.origin;
+  const double s = std::clamp(d.dot(box.axis), 0.0, box.width), t = std::clamp(d.dot(box.up()), 0.0, box.height);
+  return box.origin + s * box.axis + t * box.up();
+}
+
 }  // namespace phedra

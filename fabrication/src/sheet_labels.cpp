@@ -186,7 +186,7 @@ std::vector<SheetText> seam_labels(const Piece& piece, std::size_t i, double cap
       }
     }
     smallest = std::min(smallest, box ? box->height : 0.0);
-    if (box) out.push_back(SheetText{text, *box, TextRole::seam});
+    out.push_back(SheetText{text, box ? *box : no_room(seam_anchor(piece.panels[i].outline, side.edge)), TextRole::seam});
   }
   return out;
 }
@@ -207,23 +207,125 @@ void place_labels(Piece& piece) {
     const std::string name = "P" + std::to_string(panel.panel);
     // A panel that is not a simple polygon (red, not to be cut) is named inside its convex hull.
     const Polygon2 region = piece.cuttable ? panel.outline : convex_hull(panel.outline);
-    // The labels sharing a slim panel: one cap for its seam labels, the one that
-    // makes the smallest of all its labels (its name too) largest; the first
-    // label placed would otherwise take the room of the others.
-    double best_smallest = -1.0;
+    // The labels sharing a slim panel: one cap for its seam labels, the one
+    // that keeps most of its labels (its name too) readable inside, then makes
+    // the smallest largest; the first label placed would otherwise take the
+    // room of the others. The rest are called out beside the piece.
+    std::pair<std::size_t, double> best_score{0, -1.0};
     std::vector<SheetText> best;
-    for (double cap : {seam_label_mm, 2.4, 1.9, 1.5, 1.2, 0.9, 0.6}) {
+    for (double cap : {seam_label_mm, 2.4, readable_label_mm}) {
       double smallest = 0.0;
       std::vector<SheetText> labels = seam_labels(piece, i, cap, on_tab, smallest);
       std::vector<Box2> taken;
-      for (const SheetText& label : labels) taken.push_back(label.box);
+      for (const SheetText& label : labels) {
+        if (label.box.height > 0.0) taken.push_back(label.box);
+      }
       const auto box = fit_label(region, std::nullopt, name, panel_label_mm, taken);
-      if (box) labels.push_back(SheetText{name, *box, TextRole::panel});
+      labels.push_back(SheetText{name, box ? *box : no_room(panel_anchor(region)), TextRole::panel});
       smallest = std::min(smallest, box ? box->height : 0.0);
-      if (smallest > best_smallest + 1e-9) best_smallest = smallest, best = std::move(labels);
+      const std::pair<std::size_t, double> score{readable_inside(labels), smallest};
+      if (best.empty() || score.first > best_score.first || (score.first == best_score.first && score.second > best_score.second + 1e-9)) {
+        best_score = score, best = std::move(labels);
+      }
       if (smallest >= cap - 1e-9) break;  // every label at least the cap: a lower cap cannot do better
     }
     for (SheetText& label : best) piece.labels.push_back(std::move(label));
+  }
+  call_out_small_labels(piece);
+}
+
+Vec2 panel_anchor(const Polygon2& region) {
+  const Vec2 centre = centre_and_axis(region).first;
+  if (inside(region, centre)) return centre;
+  Vec2 mean = Vec2::Zero();
+  for (const Vec2& p : region) mean += p;
+  return mean / static_cast<double>(std::max<std::size_t>(region.size(), 1));
+}
+
+Vec2 seam_anchor(const Polygon2& outline, std::size_t edge) {
+  const Vec2 a = outline[edge], b = outline[(edge + 1) % outline.size()];
+  const Vec2 middle = 0.5 * (a + b);
+  if ((b - a).squaredNorm() == 0.0) return middle;
+  const Vec2 inward = Vec2(a.y() - b.y(), b.x() - a.x()).normalized();  // counter-clockwise: inside on the left
+  for (double step : {0.3, 0.1, 0.03}) {
+    if (inside(outline, middle + step * inward)) return middle + step * inward;
+  }
+  return middle;
+}
+
+
+}  // namespace phedra::sheets
+
+namespace phedra::sheets {
+
+Box2 no_room(const Vec2& anchor) { return Box2{anchor, Vec2::UnitX(), 0.0, 0.0}; }
+
+std::size_t readable_inside(const std::vector<SheetText>& labels) {
+  return static_cast<std::size_t>(std::count_if(labels.begin(), labels.end(), [](const SheetText& t) { return t.box.height >= readable_label_mm; }));
+}
+
+void call_out_small_labels(Piece& piece) {
+  std::vector<std::size_t> small;
+  std::vector<Box2> kept;
+  for (std::size_t k = 0; k < piece.labels.size(); ++k) {
+    if (piece.labels[k].box.height < readable_label_mm) {
+      small.push_back(k);
+    } else {
+      kept.push_back(piece.labels[k].box);
+    }
+  }
+  if (small.empty()) return;
+  // What a called-out label keeps clear of: the piece's panels (their hulls when
+  // it cannot be cut), tabs and cut outline, by a gap; its other labels.
+  std::vector<Polygon2> shapes;
+  for (const PiecePanel& p : piece.panels) shapes.push_back(piece.cuttable ? p.outline : convex_hull(p.outline));
+  for (const SeamSide& s : piece.seams) {
+    if (s.tab) shapes.push_back(*s.tab);
+  }
+  if (piece.cut) shapes.push_back(*piece.cut);
+  std::vector<std::pair<Vec2, Vec2>> bounds;
+  for (const Polygon2& shape : shapes) {
+    Vec2 lo = shape.front(), hi = shape.front();
+    for (const Vec2& p : shape) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    bounds.push_back({lo, hi});
+  }
+  constexpr double shape_gap = 0.5, label_gap = 0.4;
+  auto free = [&](const Box2& box) {
+    const Polygon2 corners = box.corners();
+    const Vec2 lo = box.origin - Vec2::Constant(shape_gap), hi = box.origin + Vec2(box.width, box.height) + Vec2::Constant(shape_gap);
+    for (std::size_t k = 0; k < shapes.size(); ++k) {
+      if ((bounds[k].first.array() > hi.array()).any() || (lo.array() > bounds[k].second.array()).any()) continue;
+      if (polygon_overlap(corners, shapes[k]) > -shape_gap) return false;
+    }
+    return clear_of(box, kept, label_gap);
+  };
+  // Directions: across the piece's long side first (a strip's labels go above or below it).
+  std::vector<Vec2> directions;
+  for (double degrees : {90.0, 270.0, 0.0, 180.0, 60.0, 120.0, 240.0, 300.0, 30.0, 150.0, 210.0, 330.0}) {
+    const double a = degrees * M_PI / 180.0;
+    directions.emplace_back(std::cos(a), std::sin(a));
+  }
+  for (const std::size_t k : small) {
+    SheetText& label = piece.labels[k];
+    const Box2& was = label.box;
+    const Vec2 anchor = was.height > 0.0 ? Vec2(was.origin + 0.5 * was.width * was.axis + 0.5 * was.height * was.up()) : was.origin;
+    const double h = readable_label_mm, w = text_width(label.text, h);
+    std::optional<Box2> found;
+    for (double d = 0.5; !found && d < 400.0; d += d < 10.0 ? 0.5 : 2.0) {
+      for (const Vec2& dir : directions) {
+        const double reach = 0.5 * (w * std::abs(dir.x()) + h * std::abs(dir.y()));
+        const Vec2 centre = anchor + (d + reach) * dir;
+        const Box2 box{centre - Vec2(0.5 * w, 0.5 * h), Vec2::UnitX(), w, h};
+        if (free(box)) {
+          found = box;
+          break;
+        }
+      }
+    }
+    if (!found) continue;  // (beyond 400 mm of everything: cannot happen on a piece that fits a page)
+    label.box = *found;
+    label.leader = anchor;
+    kept.push_back(*found);
   }
 }
 

@@ -23,6 +23,7 @@ const char* style_class(LineStyle style) {
     case LineStyle::frame: return "frame";
     case LineStyle::axis: return "axis";
     case LineStyle::hinge: return "hinge";
+    case LineStyle::leader: return "leader";
   }
   return "";
 }
@@ -37,6 +38,7 @@ const char* svg_style(LineStyle style) {
     case LineStyle::frame: return "stroke=\"#ccc\" stroke-width=\"0.2\"";
     case LineStyle::axis: return "stroke=\"#999\" stroke-width=\"0.2\" stroke-dasharray=\"4 1.5\"";
     case LineStyle::hinge: return "stroke=\"#8e24aa\" stroke-width=\"0.2\" stroke-dasharray=\"1 0.8\"";
+    case LineStyle::leader: return "stroke=\"#555\" stroke-width=\"0.12\"";
   }
   return "";
 }

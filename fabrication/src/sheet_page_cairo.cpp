@@ -30,6 +30,7 @@ void set_line(cairo_t* cr, LineStyle style) {
     case LineStyle::frame: cairo_set_source_rgb(cr, 0.8, 0.8, 0.8), cairo_set_line_width(cr, 0.2), dash({}); break;
     case LineStyle::axis: cairo_set_source_rgb(cr, 0.6, 0.6, 0.6), cairo_set_line_width(cr, 0.2), dash({4, 1.5}); break;
     case LineStyle::hinge: cairo_set_source_rgb(cr, 0.56, 0.14, 0.67), cairo_set_line_width(cr, 0.2), dash({1, 0.8}); break;
+    case LineStyle::leader: cairo_set_source_rgb(cr, 0.33, 0.33, 0.33), cairo_set_line_width(cr, 0.12), dash({}); break;
   }
 }
 

@@ -108,6 +108,7 @@ struct CutSheets {
   std::size_t seams = 0, folds = 0, tabs = 0;
   std::size_t untabbed_seams = 0;         ///< seams with no room for a tab on any side
   double smallest_label = 0.0;            ///< mm (capital height)
+  std::size_t called_out = 0;             ///< labels beside their piece with a leader (no 2 mm room inside)
   /// What the legend shows besides the lines every sheet has.
   bool any_uncuttable = false, any_flat = false, any_seam_on_fold = false;
   /// Panels left off the sheets: oversized and slivers (panel_size.h), by number.
@@ -123,8 +124,9 @@ struct CutSheets {
   double material_used() const { return piece_pages ? cut_area_mm2 / (static_cast<double>(piece_pages) * page.x() * page.y()) : 0.0; }
 };
 
-/// Smallest readable capital height (mm) the report warns below.
-constexpr double readable_label_mm = 1.2;
+/// The smallest capital height (mm) printed (issue 27: no label below 2 mm): a
+/// label with less room inside its panel is called out beside its piece.
+constexpr double readable_label_mm = 2.0;
 
 /// The pieces, unfolded and labelled, in piece coordinates (mm), then laid out on pages.
 CutSheets cut_sheets(const Design& design, const CutSheetOptions& options = {});

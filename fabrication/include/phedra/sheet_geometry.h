@@ -43,6 +43,9 @@ struct Box2 {
   Polygon2 corners() const;
 };
 
+/// The point of the box nearest to `point` (where a leader from there ends).
+Vec2 nearest_point(const Box2& box, const Vec2& point);
+
 /// The box lies inside the polygon (its corners inside, no polygon corner inside it), with `margin`.
 bool box_inside(const Polygon2& polygon, const Box2& box, double margin = 0.0);
 

@@ -12,7 +12,7 @@
 
 namespace phedra {
 
-enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis, hinge };
+enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis, hinge, leader };
 enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable, marker };
 enum class TextRole { panel, seam, title, legend, note };
 
@@ -30,6 +30,9 @@ struct SheetText {
   std::string text;
   Box2 box;
   TextRole role = TextRole::panel;
+  /// A label called out beside its piece (no room inside for 2 mm): the point
+  /// inside its panel (or on its seam) that a leader line joins it to.
+  std::optional<Vec2> leader = std::nullopt;
 };
 
 struct SheetPage {
