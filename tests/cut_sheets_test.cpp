@@ -27,6 +27,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// A panel's label: P<k>, with the piece's number before it on its first panel.
+std::string panel_name(const Piece& piece, const PiecePanel& p) {
+  const std::string name = "P" + std::to_string(p.panel);
+  return &p == &piece.panels.front() ? std::to_string(piece.number) + " " + name : name;
+}
+
+}  // namespace
+
+namespace {
+
 
 std::vector<std::string> shipped_presets() {
   std::vector<std::string> out;
@@ -96,7 +106,7 @@ void check_sheets(const Design& design, const CutSheets& s) {
       const Polygon2 region = piece.cuttable ? p.outline : convex_hull(p.outline);
       bool named = false;
       for (const SheetText& t : piece.labels) {
-        if (t.text != "P" + std::to_string(p.panel)) continue;
+        if (t.text != panel_name(piece, p)) continue;
         named = named || (t.leader ? inside(region, *t.leader) : box_inside(region, t.box));
       }
       unnamed += named ? 0 : 1;
@@ -185,7 +195,7 @@ void check_sheets(const Design& design, const CutSheets& s) {
       // height, up to 0.45 mm, inside its panel (the lines are 0.3 mm wide), on a cuttable piece.
       for (const PiecePanel& p : piece.panels) {
         for (const SheetText& t : piece.labels) {
-          if (!piece.cuttable || t.leader || t.text != "P" + std::to_string(p.panel)) continue;
+          if (!piece.cuttable || t.leader || t.text != panel_name(piece, p)) continue;
           CAPTURE(t.text);
           const double keep = (t.box.height >= 1.6 ? std::min(0.25 * t.box.height, 0.45) : 0.15 * t.box.height) - 1e-9;
           for (const Vec2& c : t.box.corners()) CHECK(inside(p.outline, c, keep));
@@ -305,7 +315,7 @@ TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs opt
   CHECK(g.pieces.size() < panel_mesh(grid).faces.size() / 3);
 }
 
-TEST_CASE("cut sheets on A4: no label below 2 mm; those with no room inside are called out with a leader", "[outlines]") {
+TEST_CASE("cut sheets on A4: no label below 2 mm, those with no room inside called out with a leader", "[outlines]") {
   std::size_t called_out = 0;
   for (const char* name : {"parallelogram-tube", "helix-tube", "grid-3x3", "default"}) {
     for (double model_mm : {200.0, 120.0}) {

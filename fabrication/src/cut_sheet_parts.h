@@ -4,6 +4,11 @@
 
 #include "phedra/cut_sheets.h"
 
+#include <cstdint>
+#include <optional>
+#include <utility>
+#include <vector>
+
 namespace phedra::sheets {
 
 /// Pieces in piece coordinates (mm): unfolded, folds and seams found, tabs chosen.
@@ -49,5 +54,33 @@ std::size_t readable_inside(const std::vector<SheetText>& labels);
 /// labels, nearest to the point it names (its box's centre, or an empty box's
 /// origin), which its `leader` keeps.
 void call_out_small_labels(Piece& piece);
+
+/// Cells of a page's content area (or of a piece) that are taken: the grid the
+/// pieces are nested on (sheet_nesting.cpp). Cell (x, y) is [x, x + 1) x [y, y + 1)
+/// cells from the grid's origin, y up.
+class CellMask {
+ public:
+  CellMask(int width, int height);
+  /// The cells within `reach` (mm) of the shapes (mm, in [0, size]), cells of
+  /// `cell` mm, with `pad` cells of room on every side (shape coordinate 0 is
+  /// cell pad).
+  static CellMask of_shapes(const std::vector<Polygon2>& shapes, const Vec2& size, double cell, double reach, int pad);
+  int width() const { return width_; }
+  int height() const { return height_; }
+  bool get(int x, int y) const;
+  void set(int x, int y);
+  /// Whether `other`, its cell (0, 0) on this one's (dx, dy), meets a taken cell.
+  bool meets(const CellMask& other, int dx, int dy) const;
+  void add(const CellMask& other, int dx, int dy);
+  /// The highest row (then the leftmost column) at most (max_x, max_y) where
+  /// `piece` meets nothing.
+  std::optional<std::pair<int, int>> highest_fit(const CellMask& piece, int max_x, int max_y) const;
+
+ private:
+  std::uint64_t* row(int y) { return bits_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(words_); }
+  const std::uint64_t* row(int y) const { return bits_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(words_); }
+  int width_, height_, words_;
+  std::vector<std::uint64_t> bits_;
+};
 
 }  // namespace phedra::sheets

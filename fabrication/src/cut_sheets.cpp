@@ -23,15 +23,18 @@ constexpr double footer_mm = 6.0;
 struct Placement {
   Box2 from;      ///< the piece's box in piece coordinates
   bool turn = false;
+  bool half_turn = false;  ///< then turned by 180 degrees in its box
   Vec2 corner;    ///< the page position of the placed box's lower-left corner
   Vec2 map(const Vec2& p) const {
     const Vec2 d = p - from.origin;
     const double s = d.dot(from.axis), t = d.dot(from.up());
-    return corner + (turn ? Vec2(from.height - t, s) : Vec2(s, t));
+    const Vec2 q = turn ? Vec2(from.height - t, s) : Vec2(s, t);
+    return corner + (half_turn ? Vec2(size() - q) : q);
   }
   Vec2 map_direction(const Vec2& v) const {
     const double s = v.dot(from.axis), t = v.dot(from.up());
-    return turn ? Vec2(-t, s) : Vec2(s, t);
+    const Vec2 q = turn ? Vec2(-t, s) : Vec2(s, t);
+    return half_turn ? Vec2(-q) : q;
   }
   Vec2 size() const { return turn ? Vec2(from.height, from.width) : Vec2(from.width, from.height); }
 };
@@ -43,7 +46,7 @@ Placement fitting_points(const std::vector<Vec2>& points, const Box2& content) {
   auto fits = [&](const Placement& p) { return p.size().x() <= content.width + 1e-9 && p.size().y() <= content.height + 1e-9; };
   auto try_box = [&](const Box2& box, Placement& out) {
     for (bool turn : {box.height > box.width, box.height <= box.width}) {
-      out = Placement{box, turn, Vec2::Zero()};
+      out = Placement{box, turn, false, Vec2::Zero()};
       if (fits(out)) return true;
     }
     return false;
@@ -142,7 +145,9 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.note(std::to_string(left_out) + (left_out == 1 ? " panel is" : " panels are") +
                 " not on the sheets: oversized or slivers, nothing one can cut (see phedra check)");
   }
-  legend.note(std::string("pieces in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row"));
+  legend.sample("12 P3", TextRole::panel, "piece 12 in assembly order, on its first panel");
+  legend.note(std::string("pieces numbered in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row") +
+              "; nested to save paper");
   // Footer: scale bar and printing note.
   add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
   const std::string note = "print at 100 % (actual size)";
@@ -238,6 +243,21 @@ std::vector<SheetFill> Piece::fills() const {
   return out;
 }
 
+/// What a piece covers on its page: panels (their hulls when it cannot be
+/// cut), tabs, a plate's cut outline, called-out labels.
+std::vector<Polygon2> piece_shapes(const Piece& piece) {
+  std::vector<Polygon2> out;
+  for (const PiecePanel& p : piece.panels) out.push_back(piece.cuttable ? p.outline : convex_hull(p.outline));
+  for (const SeamSide& s : piece.seams) {
+    if (s.tab) out.push_back(*s.tab);
+  }
+  if (piece.cut) out.push_back(*piece.cut);
+  for (const SheetText& t : piece.labels) {
+    if (t.leader) out.push_back(t.box.corners());
+  }
+  return out;
+}
+
 std::vector<Vec2> Piece::points() const {
   std::vector<Vec2> out;
   for (const PiecePanel& p : panels) out.insert(out.end(), p.outline.begin(), p.outline.end());
@@ -266,11 +286,12 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams, s.left_out);
   for (std::size_t k = 0; k < s.pieces.size(); ++k) s.pieces[k].number = k + 1;
   if (plates) sheets::cut_plates(s.pieces, *plates, s.scale, s.kerf_mm);
-  // Shelves from the top of the content area down, pages as they fill. Card
-  // pieces go in assembly order; numbered plates tallest first, each on the
-  // first shelf with room (first fit, decreasing height: less material).
-  const double left = s.content.origin.x(), right = left + s.content.width;
-  const double bottom = s.content.origin.y(), top = bottom + s.content.height;
+  // Nested by their shapes (sheet_nesting.cpp): card pieces in assembly order,
+  // numbered plates tallest first (less material); each on the first page with
+  // room, at the highest, then leftmost, free place, in whichever of its
+  // orientations sits highest there (long side across the page, or the other
+  // way when that fits; either turned half a turn: a zigzag strip fits into
+  // the previous one's notches).
   std::vector<Placement> at(s.pieces.size());
   std::vector<std::size_t> order(s.pieces.size());
   for (std::size_t k = 0; k < s.pieces.size(); ++k) {
@@ -280,39 +301,64 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   if (plates) {
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return at[a].size().y() > at[b].size().y(); });
   }
-  struct Shelf {
-    std::size_t page;
-    double top, height, x;
-  };
-  std::vector<Shelf> shelves;
+  constexpr double cell = 1.0;  // mm
+  const double reach = 0.5 * options.gap;
+  const int pad = static_cast<int>(std::ceil(reach / cell)) + 2;
+  const int columns = static_cast<int>(std::floor(s.content.width / cell + 1e-9));
+  const int rows = static_cast<int>(std::floor(s.content.height / cell + 1e-9));
+  std::vector<sheets::CellMask> taken;
   s.piece_page.assign(s.pieces.size(), 0);
-  std::size_t page = 0;
   for (const std::size_t k : order) {
-    const Vec2 size = at[k].size();
-    Shelf* shelf = nullptr;
-    if (plates) {
-      for (Shelf& candidate : shelves) {
-        if (candidate.x + size.x() <= right + 1e-9 && size.y() <= candidate.height + 1e-9) {
-          shelf = &candidate;
-          break;
+    std::vector<Placement> ways;
+    for (const bool other_turn : {false, true}) {
+      Placement w = at[k];
+      if (other_turn) {
+        w.turn = !w.turn;
+        if (w.size().x() > s.content.width + 1e-9 || w.size().y() > s.content.height + 1e-9) continue;
+      }
+      for (const bool half : {false, true}) {
+        w.half_turn = half;
+        ways.push_back(w);
+      }
+    }
+    std::vector<sheets::CellMask> masks;
+    for (Placement& w : ways) {
+      w.corner = Vec2::Zero();
+      std::vector<Polygon2> shapes = piece_shapes(s.pieces[k]);
+      for (Polygon2& shape : shapes) {
+        for (Vec2& p : shape) p = w.map(p);
+      }
+      masks.push_back(sheets::CellMask::of_shapes(shapes, w.size(), cell, reach, pad));
+    }
+    for (std::size_t page = 0;; ++page) {
+      const bool fresh = page == taken.size();
+      if (fresh) taken.emplace_back(columns + 2 * pad, rows + 2 * pad);
+      std::optional<std::pair<int, int>> best;
+      std::size_t best_way = 0;
+      for (std::size_t w = 0; w < ways.size(); ++w) {
+        const int max_x = static_cast<int>(std::floor((s.content.width - ways[w].size().x()) / cell + 1e-9));
+        const int max_y = static_cast<int>(std::floor((s.content.height - ways[w].size().y()) / cell + 1e-9));
+        if (max_x < 0 || max_y < 0) continue;
+        const auto found = taken[page].highest_fit(masks[w], max_x, max_y);
+        if (found && (!best || found->second > best->second || (found->second == best->second && found->first < best->first))) {
+          best = found, best_way = w;
         }
       }
-    } else if (!shelves.empty() && (shelves.back().x == left || shelves.back().x + size.x() <= right + 1e-9) &&
-               shelves.back().top - size.y() >= bottom) {
-      shelf = &shelves.back();
+      if (!best) {
+        if (page + 1 == taken.size() && taken.size() > 0 && fresh) {
+          throw Error(ExitCode::internal, "piece " + std::to_string(k + 1) + " fits no empty page");
+        }
+        continue;
+      }
+      Placement& w = ways[best_way];
+      w.corner = s.content.origin + cell * Vec2(best->first, best->second);
+      taken[page].add(masks[best_way], best->first, best->second);
+      place(s.pieces[k], w);
+      s.piece_page[k] = page;
+      break;
     }
-    if (!shelf) {
-      const double below = shelves.empty() ? top : shelves.back().top - shelves.back().height - options.gap;
-      if (!shelves.empty() && below - size.y() < bottom) ++page;
-      shelves.push_back({page, shelves.empty() || below - size.y() < bottom ? top : below, size.y(), left});
-      shelf = &shelves.back();
-    }
-    shelf->height = std::max(shelf->height, size.y());
-    at[k].corner = Vec2(shelf->x, shelf->top - size.y());
-    place(s.pieces[k], at[k]);
-    s.piece_page[k] = shelf->page;
-    shelf->x += size.x() + options.gap;
   }
+  const std::size_t page = taken.empty() ? 0 : taken.size() - 1;
   s.pages.resize(s.pieces.empty() ? 1 : page + 1);
   bool& any_uncuttable = s.any_uncuttable;
   bool& any_flat = s.any_flat;

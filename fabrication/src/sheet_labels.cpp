@@ -204,7 +204,9 @@ void place_labels(Piece& piece) {
   }
   for (std::size_t i = 0; i < piece.panels.size(); ++i) {
     const PiecePanel& panel = piece.panels[i];
-    const std::string name = "P" + std::to_string(panel.panel);
+    // The piece's number (its place in the assembly order) on its first panel, as on plates.
+    const std::string name = (i == 0 && piece.number > 0 ? std::to_string(piece.number) + " " : std::string()) + "P" +
+                             std::to_string(panel.panel);
     // A panel that is not a simple polygon (red, not to be cut) is named inside its convex hull.
     const Polygon2 region = piece.cuttable ? panel.outline : convex_hull(panel.outline);
     // The labels sharing a slim panel: one cap for its seam labels, the one

@@ -436,7 +436,10 @@ class Unfolder {
 std::vector<Piece> unfold_pieces(const Design& design, const CutSheetOptions& options, double scale, Vec2 fit,
                                  std::size_t& seams, std::vector<std::size_t>& left_out) {
   std::vector<Piece> pieces = Unfolder(design, options, scale, fit).run(seams, left_out);
-  for (Piece& piece : pieces) place_labels(piece);
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    pieces[k].number = k + 1;
+    place_labels(pieces[k]);
+  }
   return pieces;
 }
 
