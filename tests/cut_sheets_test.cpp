@@ -270,6 +270,54 @@ TEST_CASE("cut sheets of every shipped preset keep every promise, in every piece
   }
 }
 
+TEST_CASE("cut sheets nest pieces by their shapes: the gap kept between pieces, fewer pages", "[outlines]") {
+  // The distance between two polygons that do not overlap: from a corner of one to an edge of the other.
+  auto distance = [](const Polygon2& a, const Polygon2& b) {
+    double d = std::numeric_limits<double>::infinity();
+    for (int side = 0; side < 2; ++side) {
+      const Polygon2& p = side ? b : a;
+      const Polygon2& q = side ? a : b;
+      for (const Vec2& c : p) {
+        for (std::size_t k = 0; k < q.size(); ++k) {
+          const Vec2 e0 = q[k], e1 = q[(k + 1) % q.size()];
+          const double l2 = (e1 - e0).squaredNorm();
+          const double u = l2 > 0.0 ? std::clamp((c - e0).dot(e1 - e0) / l2, 0.0, 1.0) : 0.0;
+          d = std::min(d, (c - (e0 + u * (e1 - e0))).norm());
+        }
+      }
+    }
+    return d;
+  };
+  // (Pages before nesting by shape, with shelves of boxes: 4, 4 and 4.)
+  for (const auto& [name, pages] : {std::pair{"grid-3x3", 3}, {"default", 2}, {"helix-tube", 3}}) {
+    CAPTURE(name);
+    const CutSheetOptions options;
+    const CutSheets s = cut_sheets(load_design(presets + "/" + name + ".json"), options);
+    CHECK(s.pages.size() <= static_cast<std::size_t>(pages));
+    double closest = std::numeric_limits<double>::infinity();
+    for (const SheetPage& page : s.pages) {
+      for (std::size_t i = 0; i < page.pieces.size(); ++i) {
+        for (std::size_t j = i + 1; j < page.pieces.size(); ++j) {
+          const Piece &a = s.pieces[page.pieces[i]], &b = s.pieces[page.pieces[j]];
+          std::vector<Polygon2> sa, sb;
+          for (const Piece* piece : {&a, &b}) {
+            std::vector<Polygon2>& out = piece == &a ? sa : sb;
+            for (const PiecePanel& p : piece->panels) out.push_back(piece->cuttable ? p.outline : convex_hull(p.outline));
+            for (const SeamSide& side : piece->seams) {
+              if (side.tab) out.push_back(*side.tab);
+            }
+          }
+          for (const Polygon2& p : sa) {
+            for (const Polygon2& q : sb) closest = std::min(closest, distance(p, q));
+          }
+        }
+      }
+    }
+    CHECK(closest >= options.gap - 1e-6);
+    CHECK(closest < 3.0 * options.gap);  // nested, not spread out
+  }
+}
+
 TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs optional", "[outlines]") {
   const Design tube = load_design(presets + "/parallelogram-tube.json");
   CutSheetOptions options;
