@@ -79,8 +79,13 @@ class CellMask {
  private:
   std::uint64_t* row(int y) { return bits_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(words_); }
   const std::uint64_t* row(int y) const { return bits_.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(words_); }
+  struct Word {
+    int row, index;
+    std::uint64_t bits;
+  };
   int width_, height_, words_;
   std::vector<std::uint64_t> bits_;
+  std::vector<Word> taken_;  ///< a piece's non-empty words, the fullest first (meets tests these)
 };
 
 }  // namespace phedra::sheets

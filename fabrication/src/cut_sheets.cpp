@@ -330,7 +330,9 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
       }
       masks.push_back(sheets::CellMask::of_shapes(shapes, w.size(), cell, reach, pad));
     }
-    for (std::size_t page = 0;; ++page) {
+    // The last few pages only: earlier ones are full (and each page tried costs a scan).
+    constexpr std::size_t open_pages = 3;
+    for (std::size_t page = taken.size() > open_pages ? taken.size() - open_pages : 0;; ++page) {
       const bool fresh = page == taken.size();
       if (fresh) taken.emplace_back(columns + 2 * pad, rows + 2 * pad);
       std::optional<std::pair<int, int>> best;

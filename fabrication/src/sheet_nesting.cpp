@@ -8,6 +8,7 @@
 #include "cut_sheet_parts.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 namespace phedra::sheets {
@@ -62,21 +63,25 @@ CellMask CellMask::of_shapes(const std::vector<Polygon2>& shapes, const Vec2& si
       }
     }
   }
+  // The words to test, the fullest first: a conflict shows soonest there.
+  for (int y = 0; y < height; ++y) {
+    for (int k = 0; k + 1 < mask.words_; ++k) {
+      if (const std::uint64_t bits = mask.row(y)[k]) mask.taken_.push_back({y, k, bits});
+    }
+  }
+  std::stable_sort(mask.taken_.begin(), mask.taken_.end(),
+                   [](const Word& a, const Word& b) { return std::popcount(a.bits) > std::popcount(b.bits); });
   return mask;
 }
 
 bool CellMask::meets(const CellMask& other, int dx, int dy) const {
   // other's cell (i, j) lies on this one's (dx + i, dy + j); dx, dy >= 0 and other within this.
   const int shift = dx % word_bits, first = dx / word_bits;
-  for (int j = 0; j < other.height_; ++j) {
-    const std::uint64_t* mine = row(dy + j);
-    const std::uint64_t* theirs = other.row(j);
-    for (int k = 0; k + 1 < other.words_; ++k) {
-      if (theirs[k] == 0) continue;
-      std::uint64_t here = mine[first + k] >> shift;
-      if (shift != 0) here |= mine[first + k + 1] << (word_bits - shift);
-      if (here & theirs[k]) return true;
-    }
+  for (const Word& w : other.taken_) {
+    const std::uint64_t* mine = row(dy + w.row);
+    std::uint64_t here = mine[first + w.index] >> shift;
+    if (shift != 0) here |= mine[first + w.index + 1] << (word_bits - shift);
+    if (here & w.bits) return true;
   }
   return false;
 }
