@@ -286,9 +286,10 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   s.pieces = sheets::unfold_pieces(design, options, s.scale, fit, s.seams, s.left_out);
   for (std::size_t k = 0; k < s.pieces.size(); ++k) s.pieces[k].number = k + 1;
   if (plates) sheets::cut_plates(s.pieces, *plates, s.scale, s.kerf_mm);
-  // Nested by their shapes (sheet_nesting.cpp): card pieces in assembly order,
-  // numbered plates tallest first (less material); each on the first page with
-  // room, at the highest, then leftmost, free place, in whichever of its
+  // Nested by their shapes (sheet_nesting.cpp), tallest first (first fit,
+  // decreasing height: fewer pages; the pieces' numbers keep the assembly
+  // order); each on the first page with room (of the last three), at the
+  // highest, then leftmost, free place, in whichever of its
   // orientations sits highest there (long side across the page, or the other
   // way when that fits; either turned half a turn: a zigzag strip fits into
   // the previous one's notches).
@@ -298,9 +299,7 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
     at[k] = fitting(s.pieces[k], s.content);
     order[k] = k;
   }
-  if (plates) {
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return at[a].size().y() > at[b].size().y(); });
-  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return at[a].size().y() > at[b].size().y(); });
   constexpr double cell = 1.0;  // mm
   const double reach = 0.5 * options.gap;
   const int pad = static_cast<int>(std::ceil(reach / cell)) + 2;
