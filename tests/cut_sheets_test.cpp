@@ -182,14 +182,14 @@ void check_sheets(const Design& design, const CutSheets& s) {
       const Piece& piece = s.pieces[pi];
       for (const PiecePanel& p : piece.panels) {
         shapes.push_back(piece.cuttable ? p.outline : convex_hull(p.outline));
-        for (const Vec2& c : p.outline) CHECK(inside_box(s.content, c));
+        for (const Vec2& c : p.outline) CHECK(inside_box(s.content_of(k), c));
       }
       for (const SeamSide& side : piece.seams) {
         if (side.tab) shapes.push_back(*side.tab);
       }
       for (const SheetText& t : piece.labels) {
         labels.push_back(t.box);
-        for (const Vec2& c : t.box.corners()) CHECK(inside_box(s.content, c));
+        for (const Vec2& c : t.box.corners()) CHECK(inside_box(s.content_of(k), c));
       }
       // No fold line through a label: a panel's label of 1.6 mm or more keeps a quarter of its
       // height, up to 0.45 mm, inside its panel (the lines are 0.3 mm wide), on a cuttable piece.
@@ -235,7 +235,7 @@ void check_sheets(const Design& design, const CutSheets& s) {
     for (const SheetText& t : s.pages[k].texts) {
       for (const Vec2& c : t.box.corners()) CHECK(inside_box(Box2{Vec2::Zero(), Vec2::UnitX(), s.page.x(), s.page.y()}, c));
       if (t.role == TextRole::panel || t.role == TextRole::seam) continue;
-      for (const Vec2& c : t.box.corners()) CHECK(!inside_box(s.content, c));
+      for (const Vec2& c : t.box.corners()) CHECK(!inside_box(s.content_of(k), c));
     }
   }
 }
@@ -348,8 +348,12 @@ TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs opt
   CHECK(big.pages.size() > letter.pages.size());
   const std::string last = sheet_page_svg(big, big.pages.size() - 1);
   CHECK_THAT(last, Contains("cut sheet " + std::to_string(big.pages.size()) + " of " + std::to_string(big.pages.size())));
-  CHECK_THAT(last, Contains("mountain fold"));
   CHECK_THAT(last, Contains("mm = "));  // the scale bar
+  // The key on the first sheet; the later ones point to it and keep the room for pieces.
+  CHECK_THAT(sheet_page_svg(big, 0), Contains("mountain fold"));
+  CHECK_THAT(last, !Contains("mountain fold"));
+  CHECK_THAT(last, Contains("the key to the lines and labels is on sheet 1"));
+  CHECK(big.later_content.height > big.content.height + 10.0);
   // An array in strips: rows cross the members through their walls.
   const Design grid = load_design(presets + "/grid-3x3.json");
   const CutSheets g = cut_sheets(grid, {});

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <limits>
 #include <regex>
+#include <tuple>
 
 namespace phedra {
 namespace {
@@ -109,7 +110,16 @@ void place(Piece& piece, const Placement& at) {
   }
 }
 
-/// Title, legend, scale bar and footer of page k of n; returns the height
+/// Footer: scale bar and printing note.
+void footer(SheetPage& page, const CutSheets& s) {
+  const double m = 10.0, right = s.page.x() - m;
+  add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
+  const std::string note = "print at 100 % (actual size)";
+  add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
+}
+
+/// Title, legend (the key on the first sheet only: later sheets keep their room
+/// for pieces), scale bar and footer of page k of n; returns the height
 /// (from the page's top) the title and legend take.
 double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_uncuttable, bool any_flat,
                 bool any_seam_on_fold, std::size_t left_out) {
@@ -118,6 +128,11 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
                      (s.thick ? std::string("plates") : to_string(s.mode)) + ")",
            Vec2(m, top - 4.0), 4.0, TextRole::title);
   Legend legend(page, m, right, top - 11.0);
+  if (k > 0) {
+    legend.note("the key to the lines and labels is on sheet 1");
+    footer(page, s);
+    return s.page.y() - legend.bottom();
+  }
   if (s.thick) {
     legend.line(LineStyle::cut, "cut (" + sheet_number(s.kerf_mm) + " mm kerf allowed for: half of it outside)");
     legend.line(LineStyle::hinge, "hinge line (the panel's edge)");
@@ -125,9 +140,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.sample("12 P7", TextRole::panel, "piece 12 in assembly order, panel 7 of the 3D files");
     legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
                 "assembly on the last page");
-    add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
-    const std::string note = "print at 100 % (actual size)";
-    add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
+    footer(page, s);
     return s.page.y() - legend.bottom();
   }
   legend.line(LineStyle::cut, "cut");
@@ -148,10 +161,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
   legend.sample("12 P3", TextRole::panel, "piece 12 in assembly order, on its first panel");
   legend.note(std::string("pieces numbered in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row") +
               "; nested to save paper");
-  // Footer: scale bar and printing note.
-  add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
-  const std::string note = "print at 100 % (actual size)";
-  add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
+  footer(page, s);
   return s.page.y() - legend.bottom();
 }
 
@@ -280,6 +290,14 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
                   const ThickPlates* plates) {
   const double m = options.margin;
   s.content = Box2{Vec2(m, m + footer_mm), Vec2::UnitX(), s.page.x() - 2.0 * m, s.page.y() - 2.0 * m - header - footer_mm};
+  {  // Later sheets: a title and one line above their pieces.
+    CutSheets probe = s;
+    probe.pages.resize(2);
+    SheetPage unused;
+    const double later_header = std::min(header, decorate(unused, probe, 1, false, false, false, 0) + 4.0 - m);
+    s.later_content = s.content;
+    s.later_content.height = s.page.y() - 2.0 * m - later_header - footer_mm;
+  }
   const double tab_room = options.tabs ? 2.0 * options.max_tab_mm : 0.0;
   const Vec2 fit(s.content.width - tab_room, s.content.height - tab_room);
   s.left_out.clear();
@@ -304,9 +322,41 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   const double reach = 0.5 * options.gap;
   const int pad = static_cast<int>(std::ceil(reach / cell)) + 2;
   const int columns = static_cast<int>(std::floor(s.content.width / cell + 1e-9));
-  const int rows = static_cast<int>(std::floor(s.content.height / cell + 1e-9));
+  auto rows = [&](std::size_t page) { return static_cast<int>(std::floor(s.content_of(page).height / cell + 1e-9)); };
   std::vector<sheets::CellMask> taken;
   s.piece_page.assign(s.pieces.size(), 0);
+  auto masks_of = [&](std::size_t k, std::vector<Placement>& ways) {
+    std::vector<sheets::CellMask> masks;
+    for (Placement& w : ways) {
+      w.corner = Vec2::Zero();
+      std::vector<Polygon2> shapes = piece_shapes(s.pieces[k]);
+      for (Polygon2& shape : shapes) {
+        for (Vec2& p : shape) p = w.map(p);
+      }
+      masks.push_back(sheets::CellMask::of_shapes(shapes, w.size(), cell, reach, pad));
+    }
+    return masks;
+  };
+  // The highest (then leftmost) place on `page` of any of the ways: (way, x, y).
+  auto best_on = [&](std::size_t page, const std::vector<Placement>& ways, const std::vector<sheets::CellMask>& masks) {
+    std::optional<std::tuple<std::size_t, int, int>> best;
+    for (std::size_t w = 0; w < ways.size(); ++w) {
+      const int max_x = static_cast<int>(std::floor((s.content.width - ways[w].size().x()) / cell + 1e-9));
+      const int max_y = static_cast<int>(std::floor((s.content_of(page).height - ways[w].size().y()) / cell + 1e-9));
+      if (max_x < 0 || max_y < 0) continue;
+      const auto found = taken[page].highest_fit(masks[w], max_x, max_y);
+      if (found && (!best || found->second > std::get<2>(*best) || (found->second == std::get<2>(*best) && found->first < std::get<1>(*best)))) {
+        best = std::tuple{w, found->first, found->second};
+      }
+    }
+    return best;
+  };
+  auto put = [&](std::size_t k, std::size_t page, Placement w, const sheets::CellMask& mask, int x, int y) {
+    w.corner = s.content_of(page).origin + cell * Vec2(x, y);
+    taken[page].add(mask, x, y);
+    place(s.pieces[k], w);
+    s.piece_page[k] = page;
+  };
   for (const std::size_t k : order) {
     std::vector<Placement> ways;
     for (const bool other_turn : {false, true}) {
@@ -320,42 +370,18 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
         ways.push_back(w);
       }
     }
-    std::vector<sheets::CellMask> masks;
-    for (Placement& w : ways) {
-      w.corner = Vec2::Zero();
-      std::vector<Polygon2> shapes = piece_shapes(s.pieces[k]);
-      for (Polygon2& shape : shapes) {
-        for (Vec2& p : shape) p = w.map(p);
-      }
-      masks.push_back(sheets::CellMask::of_shapes(shapes, w.size(), cell, reach, pad));
-    }
+    const std::vector<sheets::CellMask> masks = masks_of(k, ways);
     // The last few pages only: earlier ones are full (and each page tried costs a scan).
     constexpr std::size_t open_pages = 3;
     for (std::size_t page = taken.size() > open_pages ? taken.size() - open_pages : 0;; ++page) {
       const bool fresh = page == taken.size();
-      if (fresh) taken.emplace_back(columns + 2 * pad, rows + 2 * pad);
-      std::optional<std::pair<int, int>> best;
-      std::size_t best_way = 0;
-      for (std::size_t w = 0; w < ways.size(); ++w) {
-        const int max_x = static_cast<int>(std::floor((s.content.width - ways[w].size().x()) / cell + 1e-9));
-        const int max_y = static_cast<int>(std::floor((s.content.height - ways[w].size().y()) / cell + 1e-9));
-        if (max_x < 0 || max_y < 0) continue;
-        const auto found = taken[page].highest_fit(masks[w], max_x, max_y);
-        if (found && (!best || found->second > best->second || (found->second == best->second && found->first < best->first))) {
-          best = found, best_way = w;
-        }
-      }
+      if (fresh) taken.emplace_back(columns + 2 * pad, rows(page) + 2 * pad);
+      const auto best = best_on(page, ways, masks);
       if (!best) {
-        if (page + 1 == taken.size() && taken.size() > 0 && fresh) {
-          throw Error(ExitCode::internal, "piece " + std::to_string(k + 1) + " fits no empty page");
-        }
+        if (fresh) throw Error(ExitCode::internal, "piece " + std::to_string(k + 1) + " fits no empty page");
         continue;
       }
-      Placement& w = ways[best_way];
-      w.corner = s.content.origin + cell * Vec2(best->first, best->second);
-      taken[page].add(masks[best_way], best->first, best->second);
-      place(s.pieces[k], w);
-      s.piece_page[k] = page;
+      put(k, page, ways[std::get<0>(*best)], masks[std::get<0>(*best)], std::get<1>(*best), std::get<2>(*best));
       break;
     }
   }

@@ -101,7 +101,9 @@ struct CutSheets {
   PieceMode mode = PieceMode::strips;
   double scale = 10.0;                    ///< mm per model unit
   Vec2 page;                              ///< mm
-  Box2 content;                           ///< where pieces go on every page
+  Box2 content;                           ///< where pieces go on the first page (below the key)
+  Box2 later_content;                     ///< on the later pages (below a title and one line: taller)
+  const Box2& content_of(std::size_t k) const { return k == 0 ? content : later_content; }
   std::vector<Piece> pieces;              ///< placed on their pages (page coordinates, mm, y up)
   std::vector<std::size_t> piece_page;    ///< the page of each piece
   std::vector<SheetPage> pages;
