@@ -195,7 +195,7 @@ TEST_CASE("every command and every export names the same invalid panels", "[buil
     for (auto it = std::sregex_iterator(svg.begin(), svg.end(), red_fill); it != std::sregex_iterator(); ++it) {
       red.push_back(std::stoul((*it)[1]));
     }
-    CHECK_THAT(svg, Contains("not one plate"));
+    if (page == 1) CHECK_THAT(svg, Contains("not one plate"));  // (the key is on the first sheet)
   }
   std::sort(red.begin(), red.end());
   CHECK(red == invalid);
