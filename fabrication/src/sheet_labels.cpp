@@ -266,6 +266,29 @@ std::size_t readable_inside(const std::vector<SheetText>& labels) {
   return static_cast<std::size_t>(std::count_if(labels.begin(), labels.end(), [](const SheetText& t) { return t.box.height >= readable_label_mm; }));
 }
 
+namespace {
+
+/// Whether segment a-b passes within `gap` of the box (Liang-Barsky in the box's frame).
+bool segment_meets_box(const Vec2& a, const Vec2& b, const Box2& box, double gap) {
+  const Vec2 pa(( a - box.origin).dot(box.axis), (a - box.origin).dot(box.up()));
+  const Vec2 pb((b - box.origin).dot(box.axis), (b - box.origin).dot(box.up()));
+  const Vec2 d = pb - pa, lo(-gap, -gap), hi(box.width + gap, box.height + gap);
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 2; ++i) {
+    if (std::abs(d[i]) < 1e-15) {
+      if (pa[i] < lo[i] || pa[i] > hi[i]) return false;
+      continue;
+    }
+    double u0 = (lo[i] - pa[i]) / d[i], u1 = (hi[i] - pa[i]) / d[i];
+    if (u0 > u1) std::swap(u0, u1);
+    t0 = std::max(t0, u0), t1 = std::min(t1, u1);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 void call_out_small_labels(Piece& piece) {
   std::vector<std::size_t> small;
   std::vector<Box2> kept;
@@ -292,6 +315,7 @@ void call_out_small_labels(Piece& piece) {
     bounds.push_back({lo, hi});
   }
   constexpr double shape_gap = 0.5, label_gap = 0.4;
+  std::vector<std::pair<Vec2, Vec2>> leaders;
   auto free = [&](const Box2& box) {
     const Polygon2 corners = box.corners();
     const Vec2 lo = box.origin - Vec2::Constant(shape_gap), hi = box.origin + Vec2(box.width, box.height) + Vec2::Constant(shape_gap);
@@ -299,7 +323,22 @@ void call_out_small_labels(Piece& piece) {
       if ((bounds[k].first.array() > hi.array()).any() || (lo.array() > bounds[k].second.array()).any()) continue;
       if (polygon_overlap(corners, shapes[k]) > -shape_gap) return false;
     }
-    return clear_of(box, kept, label_gap);
+    if (!clear_of(box, kept, label_gap)) return false;
+    for (const auto& [a, b] : leaders) {  // (nor on an earlier label's leader)
+      if (segment_meets_box(a, b, box, label_gap)) return false;
+    }
+    return true;
+  };
+  // A leader runs through no other label (the last 0.2 mm of it, at its own label, aside).
+  auto leader_clear = [&](const Vec2& anchor, const Box2& box) {
+    const Vec2 end = nearest_point(box, anchor);
+    const double length = (end - anchor).norm();
+    if (length < 0.3) return true;
+    const Vec2 stop = end - 0.2 * (end - anchor) / length;
+    for (const Box2& other : kept) {
+      if (segment_meets_box(anchor, stop, other, 0.1)) return false;
+    }
+    return true;
   };
   // Directions: across the piece's long side first (a strip's labels go above or below it).
   std::vector<Vec2> directions;
@@ -312,22 +351,27 @@ void call_out_small_labels(Piece& piece) {
     const Box2& was = label.box;
     const Vec2 anchor = was.height > 0.0 ? Vec2(was.origin + 0.5 * was.width * was.axis + 0.5 * was.height * was.up()) : was.origin;
     const double h = readable_label_mm, w = text_width(label.text, h);
+    // Within 25 mm with a leader through no other label; else the nearest free place.
     std::optional<Box2> found;
-    for (double d = 0.5; !found && d < 400.0; d += d < 10.0 ? 0.5 : 2.0) {
-      for (const Vec2& dir : directions) {
-        const double reach = 0.5 * (w * std::abs(dir.x()) + h * std::abs(dir.y()));
-        const Vec2 centre = anchor + (d + reach) * dir;
-        const Box2 box{centre - Vec2(0.5 * w, 0.5 * h), Vec2::UnitX(), w, h};
-        if (free(box)) {
-          found = box;
-          break;
+    for (const bool strict : {true, false}) {
+      for (double d = 0.5; !found && d < (strict ? 25.0 : 400.0); d += d < 10.0 ? 0.5 : 2.0) {
+        for (const Vec2& dir : directions) {
+          const double reach = 0.5 * (w * std::abs(dir.x()) + h * std::abs(dir.y()));
+          const Vec2 centre = anchor + (d + reach) * dir;
+          const Box2 box{centre - Vec2(0.5 * w, 0.5 * h), Vec2::UnitX(), w, h};
+          if (free(box) && (!strict || leader_clear(anchor, box))) {
+            found = box;
+            break;
+          }
         }
       }
+      if (found) break;
     }
     if (!found) continue;  // (beyond 400 mm of everything: cannot happen on a piece that fits a page)
     label.box = *found;
     label.leader = anchor;
     kept.push_back(*found);
+    leaders.push_back({anchor, nearest_point(*found, anchor)});
   }
 }
 
