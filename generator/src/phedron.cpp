@@ -52,6 +52,7 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
     if (!(d <= gap.value)) gap = {d, i};
   });
   linkage_ = Linkage(column.vertices, canonical_);
+  compute_row_coefficients();
   chain_ = StripChain(column.vertices, canonical_.heights[0], canonical_.heights[1]);
   for (const Vec3& p : reference_) {
     if (!p.allFinite()) {
@@ -199,6 +200,22 @@ PHedron::ConfigurationCycle PHedron::configuration_cycle() const {
   return cycle;
 }
 
+void PHedron::compute_row_coefficients() {
+  if (!motion_.uniform()) return;
+  const std::size_t n = motion_.columns(), width = topology_.columns();
+  const std::size_t shift = closed_ ? 0 : 1;
+  const double* alpha = motion_.row_alphas(0);
+  row_coefficients_.resize(motion_.rows() * width);
+  for (std::size_t i = 0; i < motion_.rows(); ++i) {
+    const double* q = motion_.row_scales(i);
+    double* c = &row_coefficients_[i * width];
+    for (std::size_t j = 0; j + shift < width && j < n; ++j) c[shift + j] = q[j] * alpha[j];
+    if (closed_) continue;
+    c[0] = q[0] - 1.0;                          // G_{-1} = G_0 + (S_0 - A_0)
+    c[n + 1] = (q[n - 1] - 1.0) * alpha[n - 1];  // G_n = G_{n-1} + (S_n - A_{n-1})
+  }
+}
+
 void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<Vec3> out, ClosureGap* gap) const {
   if (out.size() != vertex_count()) {
     throw Error(ExitCode::internal, "evaluate: output has " + std::to_string(out.size()) + " entries, expected " +
@@ -228,12 +245,13 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   const std::size_t shift = closed_ ? 0 : 1;
   const std::size_t stored = closed_ ? n - 1 : n;
   Vec3 last = axial[n - 1];
+  auto closure_gap = [&](std::size_t i, const Vec3* row) {
+    const double d = (last - row[0]).norm();
+    if (!(d <= gap->value)) *gap = {d, i};
+  };
   auto finish_row = [&](std::size_t i, Vec3* general) {
     if (closed_) {
-      if (gap) {
-        const double d = (last - general[0]).norm();
-        if (!(d <= gap->value)) *gap = {d, i};
-      }
+      if (gap) closure_gap(i, general);
       return;
     }
     general[-1] = general[0] + (apex[0] - axial[0]);
@@ -245,7 +263,12 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   finish_row(0, general);
   std::vector<double> offsets(n);  // b_{i,j} at t: once when every row shares its ratios
   const bool uniform = motion_.uniform();
-  if (uniform) motion_.row_offsets(0, s.data(), offsets.data());
+  // An output beyond the caches is streamed to memory (row_kernel.h); the
+  // previous row is then read from `state`, a copy that stays in the cache.
+  const bool stream = uniform && stream_output(out.size() * sizeof(Vec3));
+  StreamCopy copy(stream ? width : 0);  // the previous row, in the cache
+  StreamCarry carry;
+  if (stream) copy.start(out.data());
   RowArguments row{nullptr, offsets.data(), nullptr, stored, Vec3::Zero(), frame_.origin(), axis, nullptr, nullptr, axial};
   Vec3 first = axial[0];  // A_{i,0}, user frame
   // The strip chain is serial (row i's trajectory vertex from row i - 1's, a few
@@ -262,14 +285,19 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
     general += width;
     const Vec3 a0 = frame_.point_to_user(column0);
     if (uniform) {
-      // Every row shares alpha and b: the rows differ by alpha_j (a0 - previous a0).
+      // Every row shares alpha and b: the rows differ by alpha_j (a0 - previous a0),
+      // the boundary columns included (row_coefficients_).
       const double* alpha = motion_.row_alphas(0);
       const Vec3 delta = a0 - first;
-      advance_uniform_row({alpha, q, stored, delta, previous, general});
-      const Vec3 end = frame_.origin() + alpha[n - 1] * (a0 - frame_.origin()) + offsets[n - 1] * axis;
+      Vec3* const row_start = general - shift;
+      const UniformRowArguments arguments{&row_coefficients_[i * width], width, delta, row_start - width, row_start};
+      if (stream) {
+        const StreamCopy::Place place = copy.next(row_start);
+        advance_uniform_row_streaming({arguments.c, width, delta, place.previous, row_start}, place.copy, carry);
+      } else {
+        advance_uniform_row(arguments);
+      }
       if (closed_) last += (q[n - 1] * alpha[n - 1]) * delta;
-      axial[0] = a0;
-      axial[n - 1] = end;
     } else {
       motion_.row_offsets(i, s.data(), offsets.data());
       row.alpha = motion_.row_alphas(i);
@@ -286,8 +314,13 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
       }
     }
     first = a0;
-    finish_row(i, general);
+    if (!uniform) {
+      finish_row(i, general);
+    } else if (closed_ && gap) {
+      closure_gap(i, stream ? copy.last() : general);  // (an open row's boundary columns are in the row)
+    }
   }
+  if (stream) streaming_done(carry);
 }
 
 Points PHedron::evaluate(double t) const {

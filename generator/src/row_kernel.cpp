@@ -1,5 +1,10 @@
 #include "row_kernel.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(__EMSCRIPTEN__)
 #define PHEDRA_ROW_AVX2 1
 #include <immintrin.h>
@@ -32,67 +37,148 @@ void advance_uniform_row_portable(const UniformRowArguments& r) {
   double* __restrict g = r.general->data();
   const double* __restrict p = r.previous->data();
   for (std::size_t j = 0; j < r.count; ++j) {
-    const double c = r.q[j] * r.alpha[j];
+    const double c = r.c[j];
     g[3 * j] = p[3 * j] + c * dx;
     g[3 * j + 1] = p[3 * j + 1] + c * dy;
     g[3 * j + 2] = p[3 * j + 2] + c * dz;
   }
 }
 
+namespace {
+
+/// The portable streaming loop: the same numbers into both rows.
+void advance_uniform_row_both(const UniformRowArguments& r, Vec3* copy) {
+  for (std::size_t j = 0; j < r.count; ++j) {
+    const Vec3 v = r.previous[j] + r.c[j] * r.delta;
+    copy[j] = v;
+    r.general[j] = v;
+  }
+}
+
+std::size_t& streaming_threshold() {
+  static std::size_t bytes = 0;
+  return bytes;
+}
+
+/// Outputs larger than this are streamed: more than the last-level cache one
+/// core has on most processors (the C library's figure is the whole package's
+/// on some: 320 MiB reported on a virtual machine whose core sees 32 MiB).
+constexpr std::size_t default_streaming_threshold = std::size_t{32} << 20;
+
+}  // namespace
+
 #ifdef PHEDRA_ROW_AVX2
 namespace {
 
+/// Patterns of a vector (x, y, z) over 4 interleaved vertices: (x y z x) (y z x y) (z x y z).
+struct Patterns {
+  __m256d k[3];
+  __attribute__((target("avx2,fma"))) explicit Patterns(const Vec3& d)
+      : k{_mm256_setr_pd(d.x(), d.y(), d.z(), d.x()), _mm256_setr_pd(d.y(), d.z(), d.x(), d.y()),
+          _mm256_setr_pd(d.z(), d.x(), d.y(), d.z())} {}
+};
+
+/// Four per-vertex numbers spread over the three vectors of their interleaved
+/// x y z: (v0 v0 v0 v1) (v1 v1 v2 v2) (v2 v3 v3 v3).
+struct Spread {
+  __m256d k[3];
+  __attribute__((target("avx2,fma"))) explicit Spread(__m256d v)
+      : k{_mm256_permute4x64_pd(v, 0x40), _mm256_permute4x64_pd(v, 0xA5), _mm256_permute4x64_pd(v, 0xFE)} {}
+};
+
+/// One vertex as a lane of the vector loops computes it (one rounding a coordinate).
+__attribute__((target("avx2,fma"))) inline Vec3 fused_step(const Vec3& p, double c, const Vec3& d) {
+  return Vec3(std::fma(c, d.x(), p.x()), std::fma(c, d.y(), p.y()), std::fma(c, d.z(), p.z()));
+}
+
 __attribute__((target("avx2,fma"))) void advance_uniform_row_avx2(const UniformRowArguments& r) {
-  const Vec3& d = r.delta;
-  const __m256d dp[3] = {_mm256_setr_pd(d.x(), d.y(), d.z(), d.x()), _mm256_setr_pd(d.y(), d.z(), d.x(), d.y()),
-                         _mm256_setr_pd(d.z(), d.x(), d.y(), d.z())};
+  const Patterns dp(r.delta);
   double* g = r.general->data();
   const double* p = r.previous->data();
   std::size_t j = 0;
   for (; j + 4 <= r.count; j += 4) {
-    const __m256d c = _mm256_mul_pd(_mm256_loadu_pd(r.q + j), _mm256_loadu_pd(r.alpha + j));
-    const __m256d ck[3] = {_mm256_permute4x64_pd(c, 0x40), _mm256_permute4x64_pd(c, 0xA5), _mm256_permute4x64_pd(c, 0xFE)};
+    const Spread c(_mm256_loadu_pd(r.c + j));
     double* gj = g + 3 * j;
     const double* pj = p + 3 * j;
-    for (int k = 0; k < 3; ++k) _mm256_storeu_pd(gj + 4 * k, _mm256_fmadd_pd(ck[k], dp[k], _mm256_loadu_pd(pj + 4 * k)));
+    for (int k = 0; k < 3; ++k) _mm256_storeu_pd(gj + 4 * k, _mm256_fmadd_pd(c.k[k], dp.k[k], _mm256_loadu_pd(pj + 4 * k)));
   }
-  for (; j < r.count; ++j) {  // the last 0..3 vertices
-    const double c = r.q[j] * r.alpha[j];
-    for (int k = 0; k < 3; ++k) g[3 * j + k] = p[3 * j + k] + c * r.delta[k];
+  for (; j < r.count; ++j) r.general[j] = fused_step(r.previous[j], r.c[j], r.delta);  // the last 0..3 vertices
+}
+
+/// Appends doubles to the carry and streams its whole 32-byte blocks; what comes
+/// before the first block boundary (only at the start of the output, or after a
+/// gap: the carry's end is not `at`) is written the ordinary way. The carry then
+/// holds fewer than 4 doubles.
+__attribute__((target("avx2,fma"))) void carry_out(StreamCarry& carry, double* at, const double* values,
+                                                   std::size_t count) {
+  if (carry.count && carry.at + carry.count != at) {
+    std::copy(carry.pending, carry.pending + carry.count, carry.at);
+    carry.count = 0;
   }
+  if (!carry.count) carry.at = at;
+  std::copy(values, values + count, carry.pending + carry.count);
+  carry.count += count;
+  std::size_t k = 0;
+  for (; k < carry.count && reinterpret_cast<std::uintptr_t>(carry.at + k) % 32 != 0; ++k) carry.at[k] = carry.pending[k];
+  for (; k + 4 <= carry.count; k += 4) _mm256_stream_pd(carry.at + k, _mm256_loadu_pd(carry.pending + k));
+  std::copy(carry.pending + k, carry.pending + carry.count, carry.pending);
+  carry.at += k;
+  carry.count -= k;
+}
+
+/// Streaming: groups of four vertices (96 bytes, three 32-byte blocks) from the
+/// first vertex whose output address starts a block; the 0..3 vertices before
+/// it and after the last group go through the carry, joined with the previous
+/// and the next row into whole blocks.
+__attribute__((target("avx2,fma"))) void advance_uniform_row_streaming_avx2(const UniformRowArguments& r,
+                                                                           Vec3* copy, StreamCarry& carry) {
+  std::size_t head = 0;
+  while (head < 4 && head < r.count && reinterpret_cast<std::uintptr_t>(r.general + head) % 32 != 0) ++head;
+  if (head == 4) {  // an output not even 8-byte aligned: the ordinary way
+    streaming_done(carry);
+    return advance_uniform_row_both(r, copy);
+  }
+  auto one_by_one = [&](std::size_t from, std::size_t to) {
+    for (std::size_t j = from; j < to; ++j) copy[j] = fused_step(r.previous[j], r.c[j], r.delta);
+    if (to > from) carry_out(carry, r.general[from].data(), copy[from].data(), 3 * (to - from));
+  };
+  one_by_one(0, std::min(head, r.count));
+  const Patterns dp(r.delta);
+  const double* const c = r.c;
+  const double* const p = r.previous->data();
+  double* const g = r.general->data();
+  double* const s = copy->data();
+  std::size_t j = head;
+  for (; j + 4 <= r.count; j += 4) {
+    const Spread cj(_mm256_loadu_pd(c + j));
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t at = 3 * j + 4 * k;
+      const __m256d v = _mm256_fmadd_pd(cj.k[k], dp.k[k], _mm256_loadu_pd(p + at));
+      _mm256_storeu_pd(s + at, v);
+      _mm256_stream_pd(g + at, v);
+    }
+  }
+  one_by_one(j, r.count);
 }
 
 /// Four vertices at a time as three vectors of the interleaved x y z: the
 /// per-vertex numbers (alpha, b, q) spread over them by lane permutes, the
 /// per-row vectors (first - origin, origin, axis) as the same three patterns.
 __attribute__((target("avx2,fma"))) Vec3 advance_row_avx2(const RowArguments& r) {
-  const Vec3 d = r.first - r.origin;
-  // Patterns of a vector (x, y, z) over 4 vertices: (x y z x) (y z x y) (z x y z).
-  const __m256d dp[3] = {_mm256_setr_pd(d.x(), d.y(), d.z(), d.x()), _mm256_setr_pd(d.y(), d.z(), d.x(), d.y()),
-                         _mm256_setr_pd(d.z(), d.x(), d.y(), d.z())};
-  const Vec3& o = r.origin;
-  const __m256d op[3] = {_mm256_setr_pd(o.x(), o.y(), o.z(), o.x()), _mm256_setr_pd(o.y(), o.z(), o.x(), o.y()),
-                         _mm256_setr_pd(o.z(), o.x(), o.y(), o.z())};
-  const Vec3& u = r.axis;
-  const __m256d ap[3] = {_mm256_setr_pd(u.x(), u.y(), u.z(), u.x()), _mm256_setr_pd(u.y(), u.z(), u.x(), u.y()),
-                         _mm256_setr_pd(u.z(), u.x(), u.y(), u.z())};
+  const Patterns dp(r.first - r.origin), op(r.origin), ap(r.axis);
   double* a = r.axial->data();
   double* g = r.general->data();
   const double* p = r.previous->data();
   std::size_t j = 0;
   for (; j + 4 <= r.count; j += 4) {
-    const __m256d al = _mm256_loadu_pd(r.alpha + j), bb = _mm256_loadu_pd(r.b + j), qq = _mm256_loadu_pd(r.q + j);
-    // (v0 v0 v0 v1) (v1 v1 v2 v2) (v2 v3 v3 v3)
-    const __m256d alk[3] = {_mm256_permute4x64_pd(al, 0x40), _mm256_permute4x64_pd(al, 0xA5), _mm256_permute4x64_pd(al, 0xFE)};
-    const __m256d bk[3] = {_mm256_permute4x64_pd(bb, 0x40), _mm256_permute4x64_pd(bb, 0xA5), _mm256_permute4x64_pd(bb, 0xFE)};
-    const __m256d qk[3] = {_mm256_permute4x64_pd(qq, 0x40), _mm256_permute4x64_pd(qq, 0xA5), _mm256_permute4x64_pd(qq, 0xFE)};
+    const Spread alk(_mm256_loadu_pd(r.alpha + j)), bk(_mm256_loadu_pd(r.b + j)), qk(_mm256_loadu_pd(r.q + j));
     double* aj = a + 3 * j;
     double* gj = g + 3 * j;
     const double* pj = p + 3 * j;
     for (int k = 0; k < 3; ++k) {
-      const __m256d axial = _mm256_fmadd_pd(bk[k], ap[k], _mm256_fmadd_pd(alk[k], dp[k], op[k]));
+      const __m256d axial = _mm256_fmadd_pd(bk.k[k], ap.k[k], _mm256_fmadd_pd(alk.k[k], dp.k[k], op.k[k]));
       const __m256d old = _mm256_loadu_pd(aj + 4 * k);
-      _mm256_storeu_pd(gj + 4 * k, _mm256_fmadd_pd(qk[k], _mm256_sub_pd(axial, old), _mm256_loadu_pd(pj + 4 * k)));
+      _mm256_storeu_pd(gj + 4 * k, _mm256_fmadd_pd(qk.k[k], _mm256_sub_pd(axial, old), _mm256_loadu_pd(pj + 4 * k)));
       _mm256_storeu_pd(aj + 4 * k, axial);
     }
   }
@@ -124,6 +210,61 @@ void advance_uniform_row(const UniformRowArguments& r) {
 #endif
   advance_uniform_row_portable(r);
 }
+
+void advance_uniform_row_streaming(const UniformRowArguments& r, Vec3* copy, StreamCarry& carry) {
+#ifdef PHEDRA_ROW_AVX2
+  if (has_avx2()) return advance_uniform_row_streaming_avx2(r, copy, carry);
+#endif
+  advance_uniform_row_both(r, copy);
+}
+
+std::size_t StreamCopy::below(std::size_t from, const Vec3* row) const {
+  const auto target = reinterpret_cast<std::uintptr_t>(row) % 32;
+  for (std::size_t k = 0; k < 4 && k <= from; ++k) {
+    if (reinterpret_cast<std::uintptr_t>(room_.data() + (from - k)) % 32 == target) return from - k;
+  }
+  return slack;
+}
+
+void StreamCopy::start(const Vec3* row) {
+  at_ = below(slack - 1, row);
+  if (at_ == slack) at_ = slack - 1;  // an output not 8-byte aligned (streamed the ordinary way)
+  std::memcpy(room_[at_].data(), row->data(), width_ * sizeof(Vec3));
+}
+
+StreamCopy::Place StreamCopy::next(const Vec3* row) {
+  std::size_t to = below(at_, row);
+  if (to == slack) {  // at the bottom of the room: the copy goes back to the top
+    const std::size_t top = slack - 1;
+    std::memmove(room_[top].data(), room_[at_].data(), width_ * sizeof(Vec3));
+    at_ = top;
+    to = below(top, row);
+    if (to == slack) to = top;
+  }
+  const Place place{room_.data() + at_, room_.data() + to};
+  at_ = to;
+  return place;
+}
+
+void streaming_done(StreamCarry& carry) {
+  std::copy(carry.pending, carry.pending + carry.count, carry.at);
+  carry.count = 0;
+#ifdef PHEDRA_ROW_AVX2
+  _mm_sfence();
+#endif
+}
+
+bool stream_output(std::size_t bytes) {
+#ifdef PHEDRA_ROW_AVX2
+  const std::size_t threshold = streaming_threshold() ? streaming_threshold() : default_streaming_threshold;
+  return has_avx2() && bytes > threshold;
+#else
+  (void)bytes;
+  return false;
+#endif
+}
+
+void set_streaming_threshold(std::size_t bytes) { streaming_threshold() = bytes; }
 
 Vec3 advance_row(const RowArguments& r) {
 #ifdef PHEDRA_ROW_AVX2

@@ -6,6 +6,7 @@
 #include "phedra/vector_types.h"
 
 #include <cstddef>
+#include <vector>
 
 namespace phedra {
 
@@ -35,11 +36,12 @@ Vec3 advance_row_portable(const RowArguments& row);
 
 /// When every row shares its ratios (NetMotion::uniform), alpha_j and b_j are the
 /// same for all rows, so A_j - (A_j of the previous row) = alpha_j (first -
-/// previous first): G_j = previous_j + q_j alpha_j delta, with no axial row at
-/// all (and no cancellation between two recursions).
+/// previous first), and a whole row of the output (the boundary columns too) is
+/// the previous one plus a coefficient times delta: G_j = previous_j + c_j delta
+/// (PHedron's row coefficients), with no axial row at all (and no cancellation
+/// between two recursions).
 struct UniformRowArguments {
-  const double* alpha;  ///< NetMotion::row_alphas (shared)
-  const double* q;      ///< NetMotion::row_scales of the row
+  const double* c;      ///< the row's coefficients, `count` of them
   std::size_t count;
   Vec3 delta;           ///< A_0 of this row - A_0 of the previous row, user frame
   const Vec3* previous;
@@ -48,5 +50,61 @@ struct UniformRowArguments {
 
 void advance_uniform_row(const UniformRowArguments& row);
 void advance_uniform_row_portable(const UniformRowArguments& row);
+
+/// What a streamed output still owes: the doubles at the end of a row that do
+/// not fill a 32-byte block, written together with the start of the next row.
+struct StreamCarry {
+  double pending[16];  ///< fewer than 4 between rows, and at most 9 (0..3 vertices) come at a time
+  std::size_t count = 0;
+  double* at = nullptr;  ///< where pending[0] goes
+};
+
+/// The same for an output far larger than the caches: the row is written to
+/// `general` with non-temporal stores only (straight to memory: no read of the
+/// output's lines before they are written, no eviction of what the loop reads;
+/// a store of the ordinary kind into a line being streamed costs more than the
+/// whole row) and to `copy`, which stays in the cache for the next row. `copy`
+/// may overlap `row.previous` if it starts at or below it (StreamCopy). It
+/// should lie as `general` does modulo 32 bytes (stores that straddle cache
+/// lines cost about half the loop again). Consecutive rows must be contiguous
+/// in memory. Call streaming_done() after the last row.
+void advance_uniform_row_streaming(const UniformRowArguments& row, Vec3* copy, StreamCarry& carry);
+
+/// The in-cache copy of the previous row for advance_uniform_row_streaming,
+/// advanced in place (the smallest footprint in the cache) and kept at the
+/// output row's address modulo 32 bytes: each row's copy starts 0..3 vertices
+/// below the previous one (as the output rows lie), back at the top of a little
+/// room once every dozens of rows.
+class StreamCopy {
+ public:
+  explicit StreamCopy(std::size_t width) : room_(width + slack), width_(width) {}
+  struct Place {
+    const Vec3* previous;  ///< where the previous row's copy is
+    Vec3* copy;            ///< where this row's goes (at or below `previous`)
+  };
+  /// The first row (a copy of `row`, which lies in the output).
+  void start(const Vec3* row);
+  /// The places for the next output row, which starts at `row`.
+  Place next(const Vec3* row);
+  const Vec3* last() const { return room_.data() + at_; }
+
+ private:
+  static constexpr std::size_t slack = 64;
+  /// The highest place at or below `from` that lies as `row` does modulo 32 bytes (slack if none).
+  std::size_t below(std::size_t from, const Vec3* row) const;
+  std::vector<Vec3> room_;
+  std::size_t width_, at_ = 0;
+};
+/// Writes what `carry` still holds and orders the non-temporal stores before
+/// anything the caller does next.
+void streaming_done(StreamCarry& carry);
+
+/// Whether an output of `bytes` is worth streaming (non-temporal stores, on a
+/// processor that has them): larger than 32 MiB, more than the last-level cache
+/// of one core on most processors, so that it would not stay in the cache anyway.
+bool stream_output(std::size_t bytes);
+
+/// For the tests: the output size from which stream_output is true (0: 32 MiB again).
+void set_streaming_threshold(std::size_t bytes);
 
 }  // namespace phedra

@@ -138,6 +138,12 @@ class PHedron {
   StripChain chain_;
   bool closed_ = false;
   GridTopology topology_;
+  /// When every sign is '+' (NetMotion::uniform): row i of the output is row i - 1
+  /// plus these coefficients times A_{i,0} - A_{i-1,0}, a row of the output
+  /// (width entries) each: q_{i,j} alpha_j, and for an open P-hedron's boundary
+  /// columns q_{i,0} - 1 and (q_{i,n-1} - 1) alpha_{n-1}. Empty otherwise.
+  std::vector<double> row_coefficients_;
+  void compute_row_coefficients();
   Points reference_;
   double model_size_ = 0.0;
   double t_star_ = 0.0;
