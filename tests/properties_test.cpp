@@ -195,23 +195,26 @@ TEST_CASE("the axial placement (apex line = z-axis) and random placements agree 
   }
 }
 
-TEST_CASE("evaluate(t) streamed to memory (outputs beyond the caches) equals evaluate(t) in the cache, bit for bit",
+TEST_CASE("evaluate(t) streamed to memory (outputs beyond the caches) equals evaluate(t) in the cache",
           "[properties]") {
   // Outputs above 32 MiB are written with non-temporal stores from an in-cache
-  // copy of the previous row (generator/src/row_kernel.h); here every output
-  // streams (threshold 1 byte), placed at each of the four 8-byte offsets
-  // modulo 32 bytes, every row width (closed and open, all signs '+': the
-  // streamed case), against the ordinary path.
+  // copy of the rows (generator/src/row_kernel.h); here every output streams
+  // (threshold 1 byte), placed at each of the four 8-byte offsets modulo 32
+  // bytes, every row width, open and closed, against the ordinary path: bit for
+  // bit when every sign is '+' (the same operations), to rounding otherwise (the
+  // row loop's vector part starts where the output is aligned, so a few vertices
+  // are computed by the scalar loop instead).
   std::mt19937_64 rng(20261204);
   int redrawn = 0;
   std::size_t compared = 0;
-  for (std::size_t k = 0; k < 60; ++k) {
+  for (std::size_t k = 0; k < 80; ++k) {
     RandomInputShape shape;
     shape.profile_vertices = 2 + k % 13;
     shape.strips = 1 + (k * 7) % 40;
     shape.smooth = k % 2 == 0;
-    shape.signs.assign(shape.profile_vertices - 1, Sign::plus);
-    CAPTURE(k, shape.profile_vertices, shape.strips);
+    const bool all_plus = k % 2 == 0;
+    if (all_plus) shape.signs.assign(shape.profile_vertices - 1, Sign::plus);
+    CAPTURE(k, shape.profile_vertices, shape.strips, all_plus);
     const std::optional<PHedron> p = construct(rng, shape, redrawn);
     REQUIRE(p.has_value());
     for (double f : {0.0, 0.4, 1.0}) {
@@ -227,17 +230,27 @@ TEST_CASE("evaluate(t) streamed to memory (outputs beyond the caches) equals eva
         ClosureGap gap;
         p->evaluate(t, out, &gap);
         CAPTURE(f, offset);
-        bool same = true;
-        for (std::size_t v = 0; v < out.size(); ++v) same = same && out[v] == in_cache[v];
-        CHECK(same);
-        CHECK(gap.value == in_cache_gap.value);
-        CHECK(gap.row == in_cache_gap.row);
+        double worst = 0.0;
+        bool same = true, written = true;  // (the room starts as NaN)
+        for (std::size_t v = 0; v < out.size(); ++v) {
+          same = same && out[v] == in_cache[v];
+          written = written && out[v].allFinite();
+          worst = std::max(worst, (out[v] - in_cache[v]).norm());
+        }
+        if (all_plus) {
+          CHECK(same);
+          CHECK(gap.value == in_cache_gap.value);
+        } else {
+          CHECK(worst <= 1e-12 * p->model_size());
+          CHECK(std::abs(gap.value - in_cache_gap.value) <= 1e-12 * p->model_size());
+        }
+        CHECK(written);
         ++compared;
       }
       set_streaming_threshold(0);
     }
   }
-  CHECK(compared == 60 * 3 * 4);
+  CHECK(compared == 80 * 3 * 4);
 }
 
 TEST_CASE("evaluate(t) (the rho recursion in closed form, vectorised) equals the recursion row by row", "[properties]") {

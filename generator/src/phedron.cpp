@@ -38,7 +38,8 @@ PHedron::PHedron(ControlPolylines input) : input_(std::move(input)) {
   frame_ = CanonicalFrame(input_);
   canonical_ = to_canonical(input_, frame_);
   // The nets are built row by row straight into reference(): besides it, only
-  // the constants of the motion are stored (memory: 40 bytes a vertex).
+  // the constants of the motion are stored (memory: 40 bytes a vertex, 48 when
+  // every sign is '+': the row coefficients of evaluate).
   const AxialColumn column = build_axial_column(canonical_);
   closed_ = has_closed_profile(input_);
   const std::size_t n = canonical_.heights.size() - 1;
@@ -228,9 +229,11 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   const LinkageStart start = start_at(t);
   const std::size_t n = motion_.columns();
   std::vector<double> s(n + 1);
-  Points scratch(3 * n + 1);
+  Points scratch(3 * n + 5);
   Vec3* const apex = scratch.data();    // S_0..S_n, user frame
-  Vec3* const axial = apex + n + 1;     // axial row, user frame
+  // The axial row (user frame) lies as the output's columns do modulo 32 bytes
+  // (no vector store of the row loop straddles two cache lines more than the output's).
+  Vec3* const axial = place_like(apex + n + 1, out.data() + (has_closed_profile(input_) ? 0 : 1));
   Vec3* const first_row = axial + n;    // row 0, canonical frame
   Vec3 column0(start.x, 0, 0);
   motion_.complete_first_row(start.s0, start.s1, column0, s.data(), first_row);
@@ -261,16 +264,20 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
   Vec3* general = out.data() + shift;
   std::copy(axial, axial + stored, general);
   finish_row(0, general);
-  std::vector<double> offsets(n);  // b_{i,j} at t: once when every row shares its ratios
   const bool uniform = motion_.uniform();
-  // An output beyond the caches is streamed to memory (row_kernel.h); the
-  // previous row is then read from `state`, a copy that stays in the cache.
-  const bool stream = uniform && stream_output(out.size() * sizeof(Vec3));
-  StreamCopy copy(stream ? width : 0);  // the previous row, in the cache
+  // An output beyond the caches is streamed to memory (row_kernel.h): the rows
+  // are advanced in a copy that stays in the cache (all signs '+': StreamCopy,
+  // written out as it is computed; else `in_cache`, then copied out).
+  const bool stream = stream_output(out.size() * sizeof(Vec3));
+  StreamCopy copy(stream && uniform ? width : 0);
+  Points in_cache_room(stream && !uniform ? width + 4 : 0);
+  Vec3* const in_cache = stream && !uniform ? place_like(in_cache_room.data(), out.data()) : nullptr;
   StreamCarry carry;
-  if (stream) copy.start(out.data());
-  RowArguments row{nullptr, offsets.data(), nullptr, stored, Vec3::Zero(), frame_.origin(), axis, nullptr, nullptr, axial};
+  if (stream && uniform) copy.start(out.data());
+  if (stream && !uniform) std::copy(out.data(), out.data() + width, in_cache);
+  RowArguments row{nullptr, s.data(), nullptr, stored, Vec3::Zero(), frame_.origin(), axis, nullptr, nullptr, axial};
   Vec3 first = axial[0];  // A_{i,0}, user frame
+  std::pair<std::size_t, std::size_t> streamed;  // columns of a row that advance_row streamed
   // The strip chain is serial (row i's trajectory vertex from row i - 1's, a few
   // square roots a row): the next row's is issued before this row's vertices, so
   // that the processor overlaps its latency with them.
@@ -299,13 +306,15 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
       }
       if (closed_) last += (q[n - 1] * alpha[n - 1]) * delta;
     } else {
-      motion_.row_offsets(i, s.data(), offsets.data());
-      row.alpha = motion_.row_alphas(i);
+      row.rho = rho;
       row.q = q;
       row.first = a0;
-      row.previous = previous;
-      row.general = general;
-      const Vec3 a = advance_row(row);
+      row.previous = stream ? in_cache + shift : previous;
+      row.general = stream ? in_cache + shift : general;
+      row.stream_to = stream ? general : nullptr;
+      const RowResult result = advance_row(row);
+      streamed = {result.streamed_begin + shift, result.streamed_end + shift};
+      const Vec3& a = result.last_axial;
       if (closed_) {
         const Vec3& c = apex[n - 1];
         const Vec3 end = c + rho[n - 2] * (a - c);
@@ -315,7 +324,11 @@ void PHedron::evaluate_on(double t, const std::vector<bool>* flipped, std::span<
     }
     first = a0;
     if (!uniform) {
-      finish_row(i, general);
+      finish_row(i, stream ? in_cache + shift : general);
+      if (stream) {  // the columns the row loop did not stream, in order
+        stream_row(in_cache, general - shift, streamed.first, carry);
+        stream_row(in_cache + streamed.second, general - shift + streamed.second, width - streamed.second, carry);
+      }
     } else if (closed_ && gap) {
       closure_gap(i, stream ? copy.last() : general);  // (an open row's boundary columns are in the row)
     }

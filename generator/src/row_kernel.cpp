@@ -12,13 +12,28 @@
 
 namespace phedra {
 
-Vec3 advance_row_portable(const RowArguments& r) {
+namespace {
+
+/// alpha_j and b_j of the row being advanced.
+struct RowChain {
+  double alpha = 1.0, b = 0.0;
+  /// From column j to j + 1.
+  void step(const RowArguments& r, std::size_t j) {
+    const double rho = r.rho[j];
+    b = rho * b + (1.0 - rho) * r.s[j + 1];
+    alpha *= rho;
+  }
+};
+
+/// Columns from..to-1 of the row, the chain at column `from` (at `to` on exit).
+void advance_row_range(const RowArguments& r, std::size_t from, std::size_t to, RowChain& chain) {
   const double dx = r.first.x() - r.origin.x(), dy = r.first.y() - r.origin.y(), dz = r.first.z() - r.origin.z();
-  double* __restrict a = r.axial->data();
-  double* __restrict g = r.general->data();
-  const double* __restrict p = r.previous->data();
-  for (std::size_t j = 0; j < r.count; ++j) {
-    const double al = r.alpha[j], b = r.b[j], q = r.q[j];
+  double* a = r.axial->data();
+  double* g = r.general->data();  // may be `p` (in place: each element read before it is written)
+  const double* p = r.previous->data();
+  for (std::size_t j = from; j < to; ++j) {
+    const double al = chain.alpha, b = chain.b, q = r.q[j];
+    if (j + 1 < r.count) chain.step(r, j);
     const double x = r.origin.x() + al * dx + b * r.axis.x();
     const double y = r.origin.y() + al * dy + b * r.axis.y();
     const double z = r.origin.z() + al * dz + b * r.axis.z();
@@ -29,7 +44,14 @@ Vec3 advance_row_portable(const RowArguments& r) {
     a[3 * j + 1] = y;
     a[3 * j + 2] = z;
   }
-  return r.count ? r.axial[r.count - 1] : r.first;
+}
+
+}  // namespace
+
+RowResult advance_row_portable(const RowArguments& r) {
+  RowChain chain;
+  advance_row_range(r, 0, r.count, chain);
+  return {r.count ? r.axial[r.count - 1] : r.first, 0, 0};
 }
 
 void advance_uniform_row_portable(const UniformRowArguments& r) {
@@ -161,39 +183,71 @@ __attribute__((target("avx2,fma"))) void advance_uniform_row_streaming_avx2(cons
   one_by_one(j, r.count);
 }
 
+__attribute__((target("avx2,fma"))) void stream_row_avx2(const Vec3* row, Vec3* out, std::size_t count,
+                                                         StreamCarry& carry) {
+  double* to = out->data();
+  const double* from = row->data();
+  const std::size_t doubles = 3 * count;
+  std::size_t head = 0;
+  while (head < doubles && head < 4 && reinterpret_cast<std::uintptr_t>(to + head) % 32 != 0) ++head;
+  if (head == 4) {  // not 8-byte aligned: the ordinary way
+    streaming_done(carry);
+    std::copy(from, from + doubles, to);
+    return;
+  }
+  carry_out(carry, to, from, head);
+  std::size_t k = head;
+  for (; k + 4 <= doubles; k += 4) _mm256_stream_pd(to + k, _mm256_loadu_pd(from + k));
+  carry_out(carry, to + k, from + k, doubles - k);
+}
+
 /// Four vertices at a time as three vectors of the interleaved x y z: the
 /// per-vertex numbers (alpha, b, q) spread over them by lane permutes, the
 /// per-row vectors (first - origin, origin, axis) as the same three patterns.
-__attribute__((target("avx2,fma"))) Vec3 advance_row_avx2(const RowArguments& r) {
+__attribute__((target("avx2,fma"))) RowResult advance_row_avx2(const RowArguments& r) {
   const Patterns dp(r.first - r.origin), op(r.origin), ap(r.axis);
-  double* a = r.axial->data();
-  double* g = r.general->data();
-  const double* p = r.previous->data();
-  std::size_t j = 0;
-  for (; j + 4 <= r.count; j += 4) {
-    const Spread alk(_mm256_loadu_pd(r.alpha + j)), bk(_mm256_loadu_pd(r.b + j)), qk(_mm256_loadu_pd(r.q + j));
-    double* aj = a + 3 * j;
-    double* gj = g + 3 * j;
-    const double* pj = p + 3 * j;
+  double* const a = r.axial->data();
+  double* const g = r.general->data();
+  const double* const p = r.previous->data();
+  const double* const rho = r.rho;
+  const double* const s = r.s;
+  const double* const q = r.q;
+  const std::size_t count = r.count;
+  double* const out = r.stream_to ? r.stream_to->data() : nullptr;
+  // Streaming: the groups start where the output does on a 32-byte block.
+  std::size_t begin = 0;
+  while (out && begin < 4 && reinterpret_cast<std::uintptr_t>(out + 3 * begin) % 32 != 0) ++begin;
+  if (begin == 4) begin = count;  // an output not 8-byte aligned: no groups
+  const std::size_t first = std::min(begin, count);
+  RowChain chain;
+  advance_row_range(r, 0, first, chain);
+  std::size_t j = first;
+  for (; j + 4 <= count; j += 4) {
+    double al[4], b[4];
+    for (std::size_t k = 0; k < 4; ++k) {
+      al[k] = chain.alpha;
+      b[k] = chain.b;
+      if (j + k + 1 < count) {
+        // b's chain is one fused multiply-add a vertex (4 cycles); as the compiler
+        // contracts the plain expression, rho b was a multiply before it (7).
+        const double rh = rho[j + k];
+        chain.b = std::fma(rh, chain.b, (1.0 - rh) * s[j + k + 1]);
+        chain.alpha *= rh;
+      }
+    }
+    const Spread alk(_mm256_setr_pd(al[0], al[1], al[2], al[3])), bk(_mm256_setr_pd(b[0], b[1], b[2], b[3])),
+        qk(_mm256_loadu_pd(q + j));
     for (int k = 0; k < 3; ++k) {
+      const std::size_t at = 3 * j + 4 * k;
       const __m256d axial = _mm256_fmadd_pd(bk.k[k], ap.k[k], _mm256_fmadd_pd(alk.k[k], dp.k[k], op.k[k]));
-      const __m256d old = _mm256_loadu_pd(aj + 4 * k);
-      _mm256_storeu_pd(gj + 4 * k, _mm256_fmadd_pd(qk.k[k], _mm256_sub_pd(axial, old), _mm256_loadu_pd(pj + 4 * k)));
-      _mm256_storeu_pd(aj + 4 * k, axial);
+      const __m256d v = _mm256_fmadd_pd(qk.k[k], _mm256_sub_pd(axial, _mm256_loadu_pd(a + at)), _mm256_loadu_pd(p + at));
+      _mm256_storeu_pd(g + at, v);
+      if (out) _mm256_stream_pd(out + at, v);
+      _mm256_storeu_pd(a + at, axial);
     }
   }
-  if (j < r.count) {
-    RowArguments rest = r;
-    rest.alpha += j;
-    rest.b += j;
-    rest.q += j;
-    rest.count -= j;
-    rest.previous += j;
-    rest.general += j;
-    rest.axial += j;
-    advance_row_portable(rest);
-  }
-  return r.count ? r.axial[r.count - 1] : r.first;
+  advance_row_range(r, j, count, chain);
+  return {count ? r.axial[count - 1] : r.first, out ? first : 0, out ? j : 0};
 }
 
 bool has_avx2() {
@@ -216,6 +270,13 @@ void advance_uniform_row_streaming(const UniformRowArguments& r, Vec3* copy, Str
   if (has_avx2()) return advance_uniform_row_streaming_avx2(r, copy, carry);
 #endif
   advance_uniform_row_both(r, copy);
+}
+
+Vec3* place_like(Vec3* room, const Vec3* like) {
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (reinterpret_cast<std::uintptr_t>(room + k) % 32 == reinterpret_cast<std::uintptr_t>(like) % 32) return room + k;
+  }
+  return room;
 }
 
 std::size_t StreamCopy::below(std::size_t from, const Vec3* row) const {
@@ -246,6 +307,13 @@ StreamCopy::Place StreamCopy::next(const Vec3* row) {
   return place;
 }
 
+void stream_row(const Vec3* row, Vec3* out, std::size_t count, StreamCarry& carry) {
+#ifdef PHEDRA_ROW_AVX2
+  if (has_avx2()) return stream_row_avx2(row, out, count, carry);
+#endif
+  std::copy(row, row + count, out);
+}
+
 void streaming_done(StreamCarry& carry) {
   std::copy(carry.pending, carry.pending + carry.count, carry.at);
   carry.count = 0;
@@ -266,7 +334,7 @@ bool stream_output(std::size_t bytes) {
 
 void set_streaming_threshold(std::size_t bytes) { streaming_threshold() = bytes; }
 
-Vec3 advance_row(const RowArguments& r) {
+RowResult advance_row(const RowArguments& r) {
 #ifdef PHEDRA_ROW_AVX2
   if (has_avx2()) return advance_row_avx2(r);
 #endif

@@ -12,27 +12,43 @@ namespace phedra {
 
 /// What one row needs: the closed form of the rho recursion,
 ///   A_j = origin + alpha_j (first - origin) + b_j axis        (j = 0..count-1),
-/// and the general net G_j = previous_j + q_j (A_j - axial_j). On exit `axial`
-/// holds A_j (it held the previous row's) and `general` G_j.
+/// with alpha_0 = 1, b_0 = 0, alpha_{j+1} = alpha_j rho_j and
+/// b_{j+1} = rho_j b_j + (1 - rho_j) s_{j+1} (NetMotion::row_alphas, row_offsets:
+/// the same products in the same order, so the same numbers), and the general
+/// net G_j = previous_j + q_j (A_j - axial_j). The two chains run inside the
+/// vertex loop, so that their latency hides behind the vertices (a chain alone
+/// before the loop cost as much as the loop). On exit `axial` holds A_j (it
+/// held the previous row's) and `general` G_j.
 struct RowArguments {
-  const double* alpha;  ///< NetMotion::row_alphas
-  const double* b;      ///< NetMotion::row_offsets at t
+  const double* rho;    ///< NetMotion::row_ratios of the row
+  const double* s;      ///< the apex heights at t (along the axis from the origin)
   const double* q;      ///< NetMotion::row_scales
   std::size_t count;
   Vec3 first;           ///< A_0 (the row's trajectory vertex), user frame
   Vec3 origin;          ///< the apex line's origin (s = 0), user frame
   Vec3 axis;            ///< its unit direction, user frame
   const Vec3* previous; ///< G of the previous row
-  Vec3* general;        ///< G of this row (may not alias `previous`)
+  Vec3* general;        ///< G of this row (may be `previous`: advanced in place)
   Vec3* axial;          ///< A of the previous row in, of this row out
+  /// Where the row also goes, with non-temporal stores (an output far larger than
+  /// the caches; `general` is then a copy in the cache): the columns
+  /// RowResult::streamed. nullptr: nowhere else.
+  Vec3* stream_to = nullptr;
 };
 
-/// Computes the row; returns A_{count-1}. Uses AVX2 and FMA where the processor
+struct RowResult {
+  Vec3 last_axial;  ///< A_{count-1}
+  /// Columns [streamed_begin, streamed_end) were written to stream_to; the others
+  /// are the caller's to stream (stream_row, in order, with the carry).
+  std::size_t streamed_begin = 0, streamed_end = 0;
+};
+
+/// Computes the row. Uses AVX2 and FMA where the processor
 /// has them (checked once), the portable loop elsewhere (and in WebAssembly).
-Vec3 advance_row(const RowArguments& row);
+RowResult advance_row(const RowArguments& row);
 
 /// The portable loop (for the tests: both must agree to rounding).
-Vec3 advance_row_portable(const RowArguments& row);
+RowResult advance_row_portable(const RowArguments& row);
 
 /// When every row shares its ratios (NetMotion::uniform), alpha_j and b_j are the
 /// same for all rows, so A_j - (A_j of the previous row) = alpha_j (first -
@@ -95,6 +111,13 @@ class StreamCopy {
   std::vector<Vec3> room_;
   std::size_t width_, at_ = 0;
 };
+/// The first of room[0..3] that lies as `like` does modulo 32 bytes (room if none).
+Vec3* place_like(Vec3* room, const Vec3* like);
+
+/// Copies a row (computed in the cache) to an output far larger than the caches
+/// with non-temporal stores only, as advance_uniform_row_streaming writes.
+void stream_row(const Vec3* row, Vec3* out, std::size_t count, StreamCarry& carry);
+
 /// Writes what `carry` still holds and orders the non-temporal stores before
 /// anything the caller does next.
 void streaming_done(StreamCarry& carry);
