@@ -127,8 +127,8 @@ void add_outlines_command(CLI::App& app, Context& context) {
     if (sheets.thick) {
       const ThickReport& r = *sheets.thick;
       context.out << "plates " << six(sheets.thickness_mm) << " mm thick (" << six(r.thickness) << " model units) on the "
-                  << to_string(r.side) << " side, kerf " << six(sheets.kerf_mm) << " mm; assembly on page "
-                  << sheets.piece_pages + 1 << "; material: " << sheets.piece_pages << " sheet"
+                  << to_string(r.side) << " side, kerf " << six(sheets.kerf_mm) << " mm; assembly on pages "
+                  << sheets.piece_pages + 1 << "-" << sheets.pages.size() << " (the order, then views of it); material: " << sheets.piece_pages << " sheet"
                   << (sheets.piece_pages == 1 ? "" : "s") << " of " << six(sheets.page.x()) << " x " << six(sheets.page.y())
                   << " mm, " << six(sheets.cut_area_mm2 / 100.0) << " cm^2 of pieces ("
                   << six(100.0 * sheets.material_used()) << " % of the sheets)\n";

@@ -460,6 +460,33 @@ TEST_CASE("thick plates on cut sheets: numbered plates inside their panels, kerf
   CHECK_THAT(assembly, Contains(": start here"));
   CHECK_THAT(assembly, Contains("\n" + std::to_string(plates) + "  P"));
   CHECK_THAT(assembly, Contains("hinge to 1 (S"));
+  // The last page: views of the assembly growing, up to 12, each group of pieces
+  // once (orange), every panel in every view (a view draws each panel once),
+  // joined panels grey in later views, inside the page; captions in order.
+  {
+    const SheetPage& views = sheets.pages.back();
+    const std::size_t panels = sheets.thick->plates, count = std::min<std::size_t>(plates, 12);
+    std::size_t view_fills = 0, added = 0, joined = 0;
+    for (const SheetFill& f : views.fills) {
+      const bool view = f.style == FillStyle::view_added || f.style == FillStyle::view_joined || f.style == FillStyle::view_later;
+      view_fills += view ? 1 : 0;
+      added += f.style == FillStyle::view_added ? 1 : 0;
+      joined += f.style == FillStyle::view_joined ? 1 : 0;
+      for (const Vec2& c : f.outline) {
+        CHECK(c.allFinite());
+        CHECK((c.array() >= 0.0).all());
+        CHECK((c.array() <= sheets.page.array()).all());
+      }
+    }
+    CHECK(view_fills == count * panels);
+    CHECK(added == plates);  // each piece (one panel) orange in exactly one view
+    CHECK(joined > 0);
+    std::string captions;
+    for (const SheetText& t : views.texts) captions += t.text + "\n";
+    CHECK_THAT(captions, Contains("assembly in views"));
+    CHECK_THAT(captions, Contains("pieces 1-"));
+    CHECK_THAT(captions, Contains("-" + std::to_string(plates) + "\n"));
+  }
   // Every hinge edge drawn as a hinge line; a kerf of 0 puts the cut on the top face.
   std::size_t hinge_lines = 0;
   for (std::size_t p = 0; p < sheets.piece_pages; ++p) {
@@ -480,7 +507,7 @@ TEST_CASE("thick plates on cut sheets: the command, its files and its errors", "
   REQUIRE(run.code == 0);
   CHECK_THAT(run.out, Contains("40 pieces (plates) of 40 panels, 76 hinges"));
   CHECK_THAT(run.out, Contains("material: 1 sheet of 210 x 297 mm"));
-  CHECK_THAT(run.out, Contains("assembly on page 2"));
+  CHECK_THAT(run.out, Contains("assembly on pages 2-3 (the order, then views of it)"));
   CHECK(read_file(dir.path / "t.pdf").rfind("%PDF", 0) == 0);
   REQUIRE(test::phedra_cli({"outlines", tube, "--thickness-mm", "2", "-o", (dir.path / "t.dxf").string()}).code == 0);
   CHECK_THAT(read_file(dir.path / "t.dxf"), Contains("\nHINGE\n"));

@@ -31,6 +31,12 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
 /// and along which seam, how the hinges go on.
 std::vector<SheetPage> assembly_pages(const CutSheets& sheets);
 
+/// Pages of small 3D views of the assembly as it grows (issue 27: "a small 3D
+/// view of each step"): up to 12 views a page, each after a group of pieces,
+/// the plates already joined grey, the ones the group adds orange, the rest
+/// white, at t* from one fixed oblique direction (faces drawn far to near).
+std::vector<SheetPage> assembly_views(const CutSheets& sheets, const ThickPlates& plates);
+
 /// The largest label box (capital height at most max_height) inside `outline`,
 /// along edge `edge` (from corner edge to the next; reading upright either
 /// way) or, without edge, centred on the panel; clear of `avoid`. Nothing if

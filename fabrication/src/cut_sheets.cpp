@@ -139,7 +139,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.sample("S1", TextRole::seam, "hinge to the other S1");
     legend.sample("12 P7", TextRole::panel, "piece 12 in assembly order, panel 7 of the 3D files");
     legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
-                "assembly on the last page");
+                "assembly (order, views) on the last pages");
     footer(page, s);
     return s.page.y() - legend.bottom();
   }
@@ -424,6 +424,7 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
       if (piece.cut) s.cut_area_mm2 += 0.5 * std::abs(signed_area2(*piece.cut));
     }
     for (SheetPage& assembly : sheets::assembly_pages(s)) s.pages.push_back(std::move(assembly));
+    for (SheetPage& views : sheets::assembly_views(s, *plates)) s.pages.push_back(std::move(views));
   }
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {

@@ -50,8 +50,15 @@ const char* svg_fill(FillStyle style) {
     case FillStyle::not_cuttable:
     case FillStyle::swatch_not_cuttable: return "#f4a6a6";
     case FillStyle::marker: return "#888";
+    case FillStyle::view_joined: return "#c8c8c8";
+    case FillStyle::view_added: return "#f29b38";
+    case FillStyle::view_later: return "#fff";
   }
   return "none";
+}
+
+bool outlined(FillStyle style) {
+  return style == FillStyle::view_joined || style == FillStyle::view_added || style == FillStyle::view_later;
 }
 
 const char* text_colour(TextRole role) {
@@ -150,6 +157,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
   for (const SheetFill& f : page.fills) {
     svg << "<polygon fill=\"" << svg_fill(f.style) << '"';
     if (f.panel) svg << " class=\"not-cuttable\" data-panel=\"" << *f.panel << '"';
+    if (outlined(f.style)) svg << " stroke=\"" << (f.style == FillStyle::view_later ? "#bbb" : "#444") << "\" stroke-width=\"0.08\" stroke-linejoin=\"round\"";
     svg << " points=\"";
     for (const Vec2& c : f.outline) svg << X(c) << ',' << Y(c) << ' ';
     svg << "\"/>\n";

@@ -40,8 +40,15 @@ void draw(cairo_t* cr, const SheetPage& page, double H) {
   cairo_paint(cr);
   for (const SheetFill& f : page.fills) {
     const bool tab = f.style == FillStyle::tab || f.style == FillStyle::swatch_tab;
+    const bool view = f.style == FillStyle::view_joined || f.style == FillStyle::view_added || f.style == FillStyle::view_later;
     if (f.style == FillStyle::marker) {
       cairo_set_source_rgb(cr, 0.53, 0.53, 0.53);
+    } else if (f.style == FillStyle::view_joined) {
+      cairo_set_source_rgb(cr, 0.784, 0.784, 0.784);
+    } else if (f.style == FillStyle::view_added) {
+      cairo_set_source_rgb(cr, 0.949, 0.608, 0.22);
+    } else if (f.style == FillStyle::view_later) {
+      cairo_set_source_rgb(cr, 1, 1, 1);
     } else {
       tab ? cairo_set_source_rgb(cr, 0.894, 0.894, 0.894) : cairo_set_source_rgb(cr, 0.957, 0.651, 0.651);
     }
@@ -49,7 +56,17 @@ void draw(cairo_t* cr, const SheetPage& page, double H) {
       (i ? cairo_line_to : cairo_move_to)(cr, f.outline[i].x(), H - f.outline[i].y());
     }
     cairo_close_path(cr);
-    cairo_fill(cr);
+    if (!view) {
+      cairo_fill(cr);
+      continue;
+    }
+    cairo_fill_preserve(cr);  // outlined: the faces of a 3D view, drawn far to near
+    const double grey = f.style == FillStyle::view_later ? 0.73 : 0.27;
+    cairo_set_source_rgb(cr, grey, grey, grey);
+    cairo_set_line_width(cr, 0.08);
+    cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+    cairo_set_dash(cr, nullptr, 0, 0.0);
+    cairo_stroke(cr);
   }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   for (const SheetLine& l : page.lines) {

@@ -13,7 +13,10 @@
 namespace phedra {
 
 enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis, hinge, leader };
-enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable, marker };
+/// Fills. The view_* styles are faces of a small 3D view (the assembly pages):
+/// filled and outlined, drawn in order (far to near), so nearer faces hide
+/// farther ones: pieces already joined, the ones this step adds, the rest.
+enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable, marker, view_joined, view_added, view_later };
 enum class TextRole { panel, seam, title, legend, note };
 
 struct SheetLine {
