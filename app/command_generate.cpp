@@ -10,6 +10,7 @@
 #include "phedra/self_intersection.h"
 #include "phedra/solid_export.h"
 #include "phedra/thick_plates.h"
+#include "phedra/hinge_pins.h"
 #include "buildability_warning.h"
 #include "progress.h"
 #include "support.h"
@@ -165,17 +166,35 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
   const ThickPlates plates = thick_plates(design, report);
   std::vector<std::string> names;
   for (std::size_t k = 0; k < plates.plates(); ++k) names.push_back("plate_" + std::to_string(plates.panel(k)));
-  const std::vector<Solid> solids = plates.solids(plates.positions(t));
+  const Points positions = plates.positions(t);
+  std::vector<Solid> solids = plates.solids(positions);
   double volume = 0.0;
   for (const Solid& solid : solids) volume += solid.volume();
+  const std::size_t plate_count = solids.size();
+  HingeParts pins;
+  if (o.thickness.hinge == "pin") {  // knuckles and pins after the plates
+    pins = pin_hinge_parts(plates, positions);
+    for (std::size_t k = 0; k < pins.solids.size(); ++k) {
+      solids.push_back(std::move(pins.solids[k]));
+      names.push_back(pins.names[k]);
+    }
+  }
   const std::string ext = std::filesystem::path(o.output).extension().string();
   const std::string comment = "plates " + format_human(report.thickness) + " thick (" + to_string(report.side) +
                               " side) at t = " + format_human(t) + "; phedra buildability: " + buildability.summary();
   emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
-  context.out << "wrote " << o.output << ": " << solids.size() << " plates " << format_human(report.thickness)
+  context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(report.thickness)
               << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
               << format_human(t) << ", volume " << format_human(volume) << " (thickness x panel area "
               << format_human(report.thickness * report.panel_area) << ")\n";
+  if (o.thickness.hinge == "pin") {
+    const PinSizes sizes(report.thickness);
+    context.out << "pin hinges: " << pins.hinges << " hinges, " << pins.knuckles << " knuckles (radius "
+                << format_human(sizes.knuckle_radius) << ", each a tube joined to a leaf to glue onto its plate's panel "
+                << "face), " << pins.pins << " pins (radius " << format_human(sizes.pin_radius) << ", holes "
+                << format_human(sizes.hole_radius) << "); plates cut back by " << format_human(0.5 * report.hinge_gap)
+                << " from each hinge line\n";
+  }
   if (report.at_t_star) {
     context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << format_human(report.thickness)
                 << " names them)\n";

@@ -1,5 +1,7 @@
 #include "support.h"
 
+#include "phedra/hinge_pins.h"
+
 #include "phedra/files.h"
 #include "phedra/number_format.h"
 #include "phedra/preset.h"
@@ -49,6 +51,13 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
                       "printed-film hinge across it")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  command->add_option("--hinge", o.hinge,
+                      "With a thickness: how the plates are hinged: none (plates meet at the hinge lines), gap (a gap at "
+                      "every hinge: --hinge-gap, or a quarter of the thickness), or pin (knuckles on every hinge line, "
+                      "alternating between its plates, a pin through them; the plates cut back to clear them: solids "
+                      "from generate; docs/design.md)")
+      ->check(CLI::IsMember({"none", "gap", "pin"}))
+      ->capture_default_str();
   command->add_option("--plate-side", o.side,
                       "With a thickness: the side of the panels the plates lie on: front (the side the panel normals "
                       "of the exports point to), back, or auto (the side with the wider thick interval)")
@@ -63,6 +72,8 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
   const double unit = o.model_units ? 1.0 : 1.0 / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
   out.thickness = (o.model_units ? *o.model_units : *o.mm) * unit;
   out.hinge_gap = o.hinge_gap * unit;
+  if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap = 0.25 * out.thickness;
+  if (o.hinge == "pin") out.hinge_gap = std::max(out.hinge_gap, pin_hinge_gap(out.thickness));
   return out;
 }
 

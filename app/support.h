@@ -27,6 +27,7 @@ struct ThicknessOptions {
   double model_mm = 200.0;
   double hinge_gap = 0.0;  ///< in the thickness's units
   std::string side = "auto";
+  std::string hinge = "none";  ///< none, gap (--hinge-gap, T/4 when not given), pin (hinge_pins.h)
 };
 void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);
 /// The plate options asked for (none without --thickness or --thickness-mm).

@@ -11,6 +11,7 @@
 #include "phedra/design_preset.h"
 #include "phedra/solid_export.h"
 #include "phedra/thick_plates.h"
+#include "phedra/hinge_pins.h"
 #include "phedra/triangle_overlap.h"
 #include "support/random_input.h"
 #include "support/test_files.h"
@@ -263,6 +264,90 @@ TEST_CASE("thick plates: a hinge gap moves each plate back from its hinges by ha
   const test::Run big = test::phedra_cli({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge-gap", "5"});
   CHECK(big.code == 2);
   CHECK_THAT(big.err, Contains("--hinge-gap: a hinge gap of 5 leaves nothing of panel"));
+}
+
+TEST_CASE("thick plates: pin hinges: knuckles on the hinge lines, alternating, clear of the other plate, pins", "[thick]") {
+  const Design design = load_design(presets + "/parallelogram-tube.json");
+  const BuildabilityReport thin = assess_buildability(design);
+  ThickOptions options;
+  options.thickness = 0.08;
+  options.hinge_gap = pin_hinge_gap(options.thickness);
+  const ThickReport report = check_thickness(design, thin, options);
+  const ThickPlates plates = thick_plates(design, report);
+  const Points x = plates.positions(report.t_star);
+  const HingeParts parts = pin_hinge_parts(plates, x);
+  const PinSizes sizes(options.thickness);
+  CHECK(parts.hinges == 76);
+  CHECK(parts.pins == 76);
+  CHECK(parts.knuckles >= 3 * 76);
+  REQUIRE(parts.solids.size() == parts.knuckles + parts.pins);
+  REQUIRE(parts.names.size() == parts.solids.size());
+  // Every part closed, outward (positive volume) and of the volume of its profile times its length.
+  const double disc = M_PI * (sizes.knuckle_radius * sizes.knuckle_radius - sizes.hole_radius * sizes.hole_radius);
+  const double leaf = sizes.leaf_thickness * (sizes.leaf_reach - std::sqrt(sizes.knuckle_radius * sizes.knuckle_radius -
+                                                                         sizes.leaf_thickness * sizes.leaf_thickness));
+  // Hinge lines: the mesh edges with two plates.
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> sides;
+  for (std::size_t k = 0; k < plates.plates(); ++k) {
+    const Quad& q = plates.mesh().faces[plates.panel(k)];
+    for (int c = 0; c < 4; ++c) sides[{std::min(q[c], q[(c + 1) % 4]), std::max(q[c], q[(c + 1) % 4])}].push_back(plates.panel(k));
+  }
+  std::map<std::string, std::vector<std::pair<double, double>>> along;  // a hinge's knuckles: their spans on its line
+  for (std::size_t k = 0; k < parts.solids.size(); ++k) {
+    const Solid& s = parts.solids[k];
+    INFO(parts.names[k]);
+    REQUIRE(closed_and_oriented(s));
+    CHECK(s.volume() > 0.0);
+    // The part's hinge: the line its vertices lie closest to (pins: all within the pin radius of it).
+    const bool is_pin = parts.names[k].rfind("pin_", 0) == 0;
+    std::optional<std::pair<Vec3, Vec3>> line;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const auto& [edge, faces] : sides) {
+      if (faces.size() != 2) continue;
+      const Vec3 a = x[edge.first], d = (x[edge.second] - x[edge.first]).normalized();
+      double worst = 0.0;
+      for (std::size_t v = 0; v < (is_pin ? s.vertices.size() : 2 * 33); ++v) {  // a knuckle's first 33: its outer arc
+        const Vec3 p = s.vertices[v < 33 || is_pin ? v : v - 33 + s.vertices.size() / 2];
+        worst = std::max(worst, ((p - a) - (p - a).dot(d) * d).norm());
+      }
+      if (worst < nearest) nearest = worst, line = {a, d};
+    }
+    REQUIRE(line);
+    const double radius = is_pin ? sizes.pin_radius : sizes.knuckle_radius;
+    CHECK(nearest == Approx(radius).epsilon(1e-9));  // on the hinge line: the pin's axis, the knuckle's tube
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const Vec3& p : s.vertices) lo = std::min(lo, (p - line->first).dot(line->second)), hi = std::max(hi, (p - line->first).dot(line->second));
+    const double length = hi - lo;
+    CHECK(s.volume() == Approx((is_pin ? M_PI * radius * radius * 0.9886 : disc + leaf) * length).epsilon(0.04));
+    if (!is_pin) along[parts.names[k].substr(0, parts.names[k].rfind('_'))].push_back({lo, hi});
+  }
+  // Along each hinge its knuckles alternate between its two plates and keep the clearance between them.
+  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::pair<double, double>>> per_hinge;
+  for (const auto& [name, spans] : along) {
+    const std::size_t a = std::stoul(name.substr(8, name.find('_', 8) - 8)), b = std::stoul(name.substr(name.find('_', 8) + 1));
+    auto& all = per_hinge[{std::min(a, b), std::max(a, b)}];
+    all.insert(all.end(), spans.begin(), spans.end());
+  }
+  CHECK(per_hinge.size() == 76);
+  for (auto& [hinge, spans] : per_hinge) {
+    std::sort(spans.begin(), spans.end());
+    CHECK(spans.size() % 2 == 1);
+    for (std::size_t k = 1; k < spans.size(); ++k) CHECK(spans[k].first - spans[k - 1].second >= sizes.clearance - 1e-9);
+  }
+  // The plates are cut back so that a knuckle turning about the hinge line clears them.
+  CHECK(0.5 * report.hinge_gap >= sizes.knuckle_radius + sizes.clearance - 1e-12);
+  // The command: pins after the plates, named in the file.
+  const std::string out = (std::filesystem::temp_directory_path() / "phedra-pins.stl").string();
+  const test::Run run = test::phedra_cli({"generate", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "pin", "-o", out});
+  CHECK(run.code == 0);
+  CHECK_THAT(run.out, Contains("wrote " + out + ": 40 plates"));
+  CHECK_THAT(run.out, Contains("pin hinges: 76 hinges, " + std::to_string(parts.knuckles) + " knuckles"));
+  CHECK_THAT(run.out, Contains("76 pins"));
+  std::filesystem::remove(out);
+  const test::Run bad = test::phedra_cli({"generate", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "rivet", "-o", out});
+  CHECK(bad.code == 2);
+  CHECK_THAT(bad.err, Contains("--hinge"));
+  CHECK_FALSE(std::filesystem::exists(out));
 }
 
 TEST_CASE("thick plates: the thickest plates that fit at t*", "[thick]") {

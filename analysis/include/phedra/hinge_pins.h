@@ -1,0 +1,52 @@
+#pragma once
+// Pin hinges for thick plates (issue 27, `--hinge pin`): at every hinge, knuckles
+// on the hinge line (the fold line, so the motion is the zero-thickness one,
+// unchanged), alternating between its two plates along it, and a pin through
+// them. The plates are cut back from the hinge line (ThickPlates' hinge gap, at
+// least pin_hinge_gap) so that the other plate's knuckles turn freely. Each
+// knuckle is one closed solid: a tube around the hinge line joined to a leaf
+// that lies on its own plate's panel face (the side away from the plates), to be
+// glued there or merged with the plate by the slicer; each pin a closed
+// cylinder.
+//
+//   profile of a knuckle (across the hinge line, its own plate to the right):
+//
+//            plate side
+//        .-""-.
+//       /  ()  \____________    <- the panel plane (the plate's bottom face)
+//       \      /____________|   <- the leaf, on the plate's panel face
+//        '-..-'
+//
+// Sizes follow the thickness T: knuckle radius T/2, pin radius 0.2 T (its hole
+// 0.05 T wider), clearance 0.08 T between parts, leaf 0.3 T thick reaching 2 T
+// onto the plate; a knuckle about 3 T long (3 to 15 of them a hinge, an odd
+// number, the hinge's ends kept clear by T or a tenth of it).
+
+#include "phedra/thick_plates.h"
+
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+struct PinSizes {
+  double knuckle_radius = 0.0, pin_radius = 0.0, hole_radius = 0.0, clearance = 0.0;
+  double leaf_thickness = 0.0, leaf_reach = 0.0, knuckle_length = 0.0;
+  explicit PinSizes(double thickness);
+};
+
+/// The hinge gap pin hinges need at thickness T: both plates clear of a knuckle
+/// turning about the hinge line, with the clearance.
+double pin_hinge_gap(double thickness);
+
+struct HingeParts {
+  std::vector<Solid> solids;       ///< knuckles, then pins
+  std::vector<std::string> names;  ///< knuckle_<a>_<b>_<k> (of plate panel a, on its hinge with b), pin_<a>_<b>
+  std::size_t hinges = 0, knuckles = 0, pins = 0;
+};
+
+/// The knuckles and pins of every hinge of `plates` at the mesh positions x
+/// (ThickPlates::positions). Every solid is closed and outward-oriented.
+HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x);
+
+}  // namespace phedra
