@@ -172,9 +172,11 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
   for (const Solid& solid : solids) volume += solid.volume();
   const std::size_t plate_count = solids.size();
   HingeParts pins;
+  double parts_volume = 0.0;
   if (o.thickness.hinge == "pin") {  // knuckles and pins after the plates
     pins = pin_hinge_parts(plates, positions);
     for (std::size_t k = 0; k < pins.solids.size(); ++k) {
+      parts_volume += pins.solids[k].volume();
       solids.push_back(std::move(pins.solids[k]));
       names.push_back(pins.names[k]);
     }
@@ -192,8 +194,8 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
     context.out << "pin hinges: " << pins.hinges << " hinges, " << pins.knuckles << " knuckles (radius "
                 << format_human(sizes.knuckle_radius) << ", each a tube joined to a leaf to glue onto its plate's panel "
                 << "face), " << pins.pins << " pins (radius " << format_human(sizes.pin_radius) << ", holes "
-                << format_human(sizes.hole_radius) << "); plates cut back by " << format_human(0.5 * report.hinge_gap)
-                << " from each hinge line\n";
+                << format_human(sizes.hole_radius) << "), volume " << format_human(parts_volume) << "; plates cut back by "
+                << format_human(0.5 * report.hinge_gap) << " from each hinge line\n";
   }
   if (report.at_t_star) {
     context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << format_human(report.thickness)
