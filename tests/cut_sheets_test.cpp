@@ -288,8 +288,10 @@ TEST_CASE("cut sheets nest pieces by their shapes: the gap kept between pieces, 
     }
     return d;
   };
-  // (Pages before nesting by shape, with shelves of boxes: 4, 4 and 4.)
-  for (const auto& [name, pages] : {std::pair{"grid-3x3", 3}, {"default", 2}, {"helix-tube", 2}}) {
+  // (Pages before nesting by shape, with shelves of boxes: 4, 4 and 4; grid-3x3
+  // took 3, its third holding one piece, before a sparse last page was nested
+  // again with its pieces first.)
+  for (const auto& [name, pages] : {std::pair{"grid-3x3", 2}, {"default", 2}, {"helix-tube", 2}}) {
     CAPTURE(name);
     const CutSheetOptions options;
     const CutSheets s = cut_sheets(load_design(presets + "/" + name + ".json"), options);

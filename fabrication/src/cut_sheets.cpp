@@ -351,14 +351,10 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
     }
     return best;
   };
-  auto put = [&](std::size_t k, std::size_t page, Placement w, const sheets::CellMask& mask, int x, int y) {
-    w.corner = s.content_of(page).origin + cell * Vec2(x, y);
-    taken[page].add(mask, x, y);
-    place(s.pieces[k], w);
-    s.piece_page[k] = page;
-  };
-  for (const std::size_t k : order) {
-    std::vector<Placement> ways;
+  // Each piece's ways (orientations) and their masks, once: the nesting may run twice.
+  std::vector<std::vector<Placement>> ways_of(s.pieces.size());
+  std::vector<std::vector<sheets::CellMask>> masks_of_piece(s.pieces.size());
+  for (std::size_t k = 0; k < s.pieces.size(); ++k) {
     for (const bool other_turn : {false, true}) {
       Placement w = at[k];
       if (other_turn) {
@@ -367,26 +363,69 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
       }
       for (const bool half : {false, true}) {
         w.half_turn = half;
-        ways.push_back(w);
+        ways_of[k].push_back(w);
       }
     }
-    const std::vector<sheets::CellMask> masks = masks_of(k, ways);
-    // The last few pages only: earlier ones are full (and each page tried costs a scan).
-    constexpr std::size_t open_pages = 3;
-    for (std::size_t page = taken.size() > open_pages ? taken.size() - open_pages : 0;; ++page) {
-      const bool fresh = page == taken.size();
-      if (fresh) taken.emplace_back(columns + 2 * pad, rows(page) + 2 * pad);
-      const auto best = best_on(page, ways, masks);
-      if (!best) {
-        if (fresh) throw Error(ExitCode::internal, "piece " + std::to_string(k + 1) + " fits no empty page");
-        continue;
+    masks_of_piece[k] = masks_of(k, ways_of[k]);
+  }
+  struct Spot {
+    std::size_t page = 0, way = 0;
+    int x = 0, y = 0;
+  };
+  // Every piece in `sequence` on the first page with room (of the last few): where each goes.
+  auto nest = [&](const std::vector<std::size_t>& sequence) {
+    taken.clear();
+    std::vector<Spot> spots(s.pieces.size());
+    for (const std::size_t k : sequence) {
+      // The last few pages only: earlier ones are full (and each page tried costs a scan).
+      constexpr std::size_t open_pages = 3;
+      for (std::size_t page = taken.size() > open_pages ? taken.size() - open_pages : 0;; ++page) {
+        const bool fresh = page == taken.size();
+        if (fresh) taken.emplace_back(columns + 2 * pad, rows(page) + 2 * pad);
+        const auto best = best_on(page, ways_of[k], masks_of_piece[k]);
+        if (!best) {
+          if (fresh) throw Error(ExitCode::internal, "piece " + std::to_string(k + 1) + " fits no empty page");
+          continue;
+        }
+        const auto [way, x, y] = *best;
+        taken[page].add(masks_of_piece[k][way], x, y);
+        spots[k] = Spot{page, way, x, y};
+        break;
       }
-      put(k, page, ways[std::get<0>(*best)], masks[std::get<0>(*best)], std::get<1>(*best), std::get<2>(*best));
-      break;
+    }
+    return spots;
+  };
+  std::vector<Spot> spots = nest(order);
+  std::size_t pages = taken.size();
+  // A last page that holds little (under a third of a page of the pieces' boxes):
+  // once more with its pieces first, the hardest to place, so that the others
+  // fill the room around them (grid-3x3: one piece on a third page).
+  if (pages > 1) {
+    double last_area = 0.0;
+    std::vector<std::size_t> again;
+    for (const std::size_t k : order) {
+      if (spots[k].page + 1 != pages) continue;
+      last_area += ways_of[k].front().size().prod();
+      again.push_back(k);
+    }
+    if (last_area < s.later_content.width * s.later_content.height / 3.0) {
+      for (const std::size_t k : order) {
+        if (spots[k].page + 1 != pages) again.push_back(k);
+      }
+      std::vector<Spot> other = nest(again);
+      if (taken.size() < pages) {
+        spots = std::move(other);
+        pages = taken.size();
+      }
     }
   }
-  const std::size_t page = taken.empty() ? 0 : taken.size() - 1;
-  s.pages.resize(s.pieces.empty() ? 1 : page + 1);
+  for (std::size_t k = 0; k < s.pieces.size(); ++k) {
+    Placement w = ways_of[k][spots[k].way];
+    w.corner = s.content_of(spots[k].page).origin + cell * Vec2(spots[k].x, spots[k].y);
+    place(s.pieces[k], w);
+    s.piece_page[k] = spots[k].page;
+  }
+  s.pages.resize(s.pieces.empty() ? 1 : pages);
   bool& any_uncuttable = s.any_uncuttable;
   bool& any_flat = s.any_flat;
   bool& any_seam_on_fold = s.any_seam_on_fold;
