@@ -104,15 +104,22 @@ std::vector<SheetPage> assembly_views(const CutSheets& s, const ThickPlates& pla
     }
   }
 
-  // Up to 12 views a page (3 across, 4 down), each after a group of pieces.
+  // Up to 12 views on the page, each after a group of pieces, in the grid (1 to
+  // 4 across) that draws them largest: a long, flat model in fewer columns.
   const double m = 10.0, top = s.page.y() - m;
-  const std::size_t across = 3, down = 4, per_page = across * down;
-  const std::size_t views = std::min<std::size_t>(steps, per_page);
-  const double cell_w = (s.page.x() - 2.0 * m) / static_cast<double>(across);
-  const double first_top = top - 12.0, cell_h = (first_top - m) / static_cast<double>(down);
-  const double caption = 6.0;
+  const std::size_t views = std::min<std::size_t>(steps, 12);
+  const double first_top = top - 12.0, caption = 6.0;
   const Vec2 extent = (hi - lo).cwiseMax(Vec2::Constant(1e-12));
-  const double scale = 0.92 * std::min((cell_w - 2.0) / extent.x(), (cell_h - caption - 2.0) / extent.y());
+  std::size_t across = 1;
+  double cell_w = 0.0, cell_h = 0.0, scale = 0.0;
+  for (std::size_t columns = 1; columns <= 4; ++columns) {
+    const std::size_t rows = (views + columns - 1) / columns;
+    const double w = (s.page.x() - 2.0 * m) / static_cast<double>(columns);
+    const double h = (first_top - m) / static_cast<double>(rows);
+    if (h < caption + 10.0) continue;
+    const double fits = 0.92 * std::min((w - 2.0) / extent.x(), (h - caption - 2.0) / extent.y());
+    if (fits > scale) across = columns, cell_w = w, cell_h = h, scale = fits;
+  }
   SheetPage page;
   add_text(page, s.name + " - assembly in views", Vec2(m, top - 4.0), 4.0, TextRole::title);
   const std::string note = "After each group of pieces: joined grey, the group orange (drawn over the rest, to show where it goes), the rest white; at t*.";
