@@ -223,16 +223,22 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
     bevel = std::min(bevel, bound);
   }
 
-  // The plates' solids at t*, then in their frames.
+  // The plates' solids at t*, then in their frames; `chamfer[c]` (> 0) cuts
+  // corner c off, square, through the points that far from it along its edges.
   smallest_bevel_ = quarter_turn;
-  for (std::size_t k = 0; k < plates_.size(); ++k) {
+  std::vector<std::vector<Vec3>> world(plates_.size());
+  for (std::size_t k = 0; k < plates_.size(); ++k) world[k] = plates_[k].bottom;
+  auto shape = [&](std::size_t k, const std::vector<double>& chamfer) {
     Plate& plate = plates_[k];
-    const std::vector<Vec3>& p = plate.bottom;
+    const std::vector<Vec3>& p = world[k];
     const std::size_t n = p.size();
     const Vec3 normal = area_vector(p).normalized();
     const Vec3& m = plate_direction[k];
-    std::vector<Vec3> plane_normal(n);
-    std::vector<double> plane_offset(n);
+    // The side planes in order around the plate: each edge's, and a chamfer's
+    // before its corner's next edge (square, through the points `chamfer[c]` from
+    // the top face's corner along its two edges, so that it cuts the top too).
+    std::vector<Vec3> edge_normal(n);
+    std::vector<double> edge_offset(n);
     for (std::size_t e = 0; e < n; ++e) {
       const Vec3 d = (p[(e + 1) % n] - p[e]).normalized();
       const Vec3 w = normal.cross(d);  // into the panel
@@ -243,33 +249,61 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
       bevel = std::max(bevel, floor);
       smallest_bevel_ = std::min(smallest_bevel_, bevel);
       const Vec3 v = std::cos(bevel) * w + std::sin(bevel) * m;  // up the side face, away from the edge
-      plane_normal[e] = d.cross(v).normalized();
+      edge_normal[e] = d.cross(v).normalized();
       // A hinge gap moves the side face into the plate by half the gap (in the panel's plane).
-      plane_offset[e] = plane_normal[e].dot(p[e] + (plate.hinge[e] ? 0.5 * hinge_gap : 0.0) * w);
+      edge_offset[e] = edge_normal[e].dot(p[e] + (plate.hinge[e] ? 0.5 * hinge_gap : 0.0) * w);
     }
+    std::vector<Vec3> plane_normal;
+    std::vector<double> plane_offset;
+    std::vector<Vec3> at;     // a point of the plane at the panel (the bottom's fallback corner)
+    std::vector<Vec3> along;  // the side's direction in the panel
+    for (std::size_t e = 0; e < n; ++e) {
+      plane_normal.push_back(edge_normal[e]);
+      plane_offset.push_back(edge_offset[e]);
+      at.push_back(p[e]);
+      along.push_back(p[(e + 1) % n] - p[e]);
+      const std::size_t c = (e + 1) % n;
+      if (chamfer.empty() || !(chamfer[c] > 0.0)) continue;
+      Eigen::Matrix3d a;
+      a.row(0) = m.transpose();
+      a.row(1) = edge_normal[e].transpose();
+      a.row(2) = edge_normal[c].transpose();
+      const Vec3 top_corner = a.colPivHouseholderQr().solve(Vec3(m.dot(p[c]) + thickness, edge_offset[e], edge_offset[c]));
+      if (!top_corner.allFinite()) continue;
+      const Vec3 u_next = (p[(c + 1) % n] - p[c]).normalized(), u_back = (p[e] - p[c]).normalized();
+      const Vec3 line = (u_next - u_back).normalized();
+      // Through the bottom's chamfer line (the panel's corner cut `chamfer[c]` along
+      // both edges) and the point that far from the top face's corner: it leans as the bevels do.
+      const Vec3 bottom_point = p[c] + chamfer[c] * u_next, top_point = top_corner + chamfer[c] * u_next;
+      plane_normal.push_back(line.cross(top_point - bottom_point).normalized());
+      plane_offset.push_back(plane_normal.back().dot(bottom_point));
+      at.push_back(p[c] + chamfer[c] * u_back);
+      along.push_back(line);
+    }
+    const std::size_t sides = plane_normal.size();
     // Each corner where the bottom (height 0) or top (height T) plane meets the two side faces at it.
     auto corners_at = [&](double height) {
-      std::vector<Vec3> out(n);
-      for (std::size_t c = 0; c < n; ++c) {
-        const std::size_t before = (c + n - 1) % n;
+      std::vector<Vec3> out(sides);
+      for (std::size_t c = 0; c < sides; ++c) {
+        const std::size_t before = (c + sides - 1) % sides;
         Eigen::Matrix3d a;
         a.row(0) = m.transpose();
         a.row(1) = plane_normal[before].transpose();
         a.row(2) = plane_normal[c].transpose();
-        const Vec3 b(m.dot(p[c]) + height, plane_offset[before], plane_offset[c]);
+        const Vec3 b(m.dot(at[c]) + height, plane_offset[before], plane_offset[c]);
         out[c] = a.colPivHouseholderQr().solve(b);
-        if (!out[c].allFinite()) out[c] = p[c] + height * m;
+        if (!out[c].allFinite()) out[c] = at[c] + height * m;
       }
       return out;
     };
     std::vector<Vec3> top = corners_at(thickness);
-    std::vector<Vec3> bottom = hinge_gap > 0.0 ? corners_at(0.0) : p;
-    // The top and bottom faces must keep every edge's direction and the panel's orientation.
-    for (std::size_t e = 0; e < n; ++e) {
-      const Vec3 d = p[(e + 1) % n] - p[e];
+    std::vector<Vec3> bottom = hinge_gap > 0.0 || sides != n ? corners_at(0.0) : p;
+    // The top and bottom faces must keep every side's direction and the panel's orientation.
+    for (std::size_t e = 0; e < sides; ++e) {
+      const std::size_t c = (e + 1) % sides;
       for (const std::vector<Vec3>* face : {&bottom, &top}) {
         const std::vector<Vec3>& f = *face;
-        if (!((f[(e + 1) % n] - f[e]).dot(d) > 0.0) || !(area_vector(f).dot(normal) > 0.0)) {
+        if (!((f[c] - f[e]).dot(along[e]) > 0.0) || !(area_vector(f).dot(normal) > 0.0)) {
           const bool gap = face == &bottom;
           throw InvalidInputError(gap ? "--hinge-gap" : "--thickness",
                                   gap ? "a hinge gap of " + format_number(hinge_gap) + " leaves nothing of " +
@@ -283,8 +317,8 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
     // The frame at t*, and everything in it.
     const Eigen::Matrix3d r = frame(plate, x0);
     const Vec3 origin = x0[plate.corners[0]];
-    for (Vec3& q : plate.bottom) q = r.transpose() * (q - origin);
-    plate.panel = plate.bottom;
+    plate.panel = p;
+    for (Vec3& q : plate.panel) q = r.transpose() * (q - origin);
     for (Vec3& q : bottom) q = r.transpose() * (q - origin);
     for (Vec3& q : top) q = r.transpose() * (q - origin);
     plate.bottom = bottom;
@@ -292,17 +326,18 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
     // Convex pieces: the whole plate, or the two halves of a dart along its inner diagonal.
     std::vector<std::vector<std::size_t>> pieces;
     const std::vector<Vec3>& pc = plate.panel;  // in the frame: its normal is +z
-    if (n == 4 && panel_shape({pc[0], pc[1], pc[2], pc[3]}) == PanelShape::non_convex) {
+    if (n == 4 && sides == n && panel_shape({pc[0], pc[1], pc[2], pc[3]}) == PanelShape::non_convex) {
       const std::array<double, 4> turns = corner_turns({pc[0], pc[1], pc[2], pc[3]}, Vec3::UnitZ());
       const std::size_t reflex = static_cast<std::size_t>(std::min_element(turns.begin(), turns.end()) - turns.begin());
       pieces = {{reflex, (reflex + 1) % 4, (reflex + 2) % 4}, {(reflex + 2) % 4, (reflex + 3) % 4, reflex}};
     } else {
-      std::vector<std::size_t> all(n);
-      for (std::size_t c = 0; c < n; ++c) all[c] = c;
+      std::vector<std::size_t> all(sides);
+      for (std::size_t c = 0; c < sides; ++c) all[c] = c;
       pieces = {all};
     }
     double size = 0.0;
     for (const Vec3& q : plate.bottom) size = std::max(size, q.norm());
+    plate.pieces.clear();
     for (const std::vector<std::size_t>& corners : pieces) {
       Piece piece;
       for (std::size_t c : corners) piece.points.push_back(plate.bottom[c]);
@@ -312,6 +347,75 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
       piece.centre /= static_cast<double>(piece.points.size());
       for (const Vec3& q : piece.points) piece.radius = std::max(piece.radius, (q - piece.centre).norm());
       plate.pieces.push_back(std::move(piece));
+    }
+  };
+  for (std::size_t k = 0; k < plates_.size(); ++k) shape(k, {});
+
+  // Plates that share only a corner (no hinge: plates of two members meeting at
+  // a vertex) and overlap there at t*: both cut off square at that corner, by
+  // T, 2T, 4T, 8T (at most 0.4 of the shorter edge at it) until they clear;
+  // when nothing within that clears them, they stay whole (check names them).
+  std::map<std::size_t, std::vector<std::pair<std::size_t, std::size_t>>> at_vertex;  // mesh vertex -> (plate, corner)
+  for (std::size_t k = 0; k < plates_.size(); ++k) {
+    for (std::size_t c = 0; c < plates_[k].corners.size(); ++c) at_vertex[plates_[k].corners[c]].push_back({k, c});
+  }
+  std::vector<std::vector<double>> chamfers(plates_.size());
+  for (std::size_t k = 0; k < plates_.size(); ++k) chamfers[k].assign(plates_[k].corners.size(), 0.0);
+  auto overlap = [&](std::size_t a, std::size_t b) {
+    const Eigen::Matrix3d ra = frame(plates_[a], x0), rb = frame(plates_[b], x0);
+    const Vec3 oa = x0[plates_[a].corners[0]], ob = x0[plates_[b].corners[0]];
+    for (const Piece& pa : plates_[a].pieces) {
+      for (const Piece& pb : plates_[b].pieces) {
+        if (sat_depth(pa, ra, oa, pb, rb, ob) > tolerance_) return true;
+      }
+    }
+    return false;
+  };
+  auto shortest_edge_at = [&](std::size_t k, std::size_t c) {
+    const std::vector<Vec3>& p = world[k];
+    const std::size_t n = p.size();
+    return std::min((p[(c + 1) % n] - p[c]).norm(), (p[(c + n - 1) % n] - p[c]).norm());
+  };
+  corners_trimmed_ = 0;
+  for (const auto& [vertex, on] : at_vertex) {
+    for (std::size_t i = 0; i < on.size(); ++i) {
+      for (std::size_t j = i + 1; j < on.size(); ++j) {
+        const auto [a, ca] = on[i];
+        const auto [b, cb] = on[j];
+        const std::vector<std::size_t>& n = neighbours_[a];
+        if (a == b || std::find(n.begin(), n.end(), b) != n.end() || !overlap(a, b)) continue;
+        auto dart = [&](std::size_t k) {
+          const std::vector<Vec3>& w = world[k];
+          return w.size() == 4 && panel_shape({w[0], w[1], w[2], w[3]}) == PanelShape::non_convex;
+        };
+        if (dart(a) || dart(b)) continue;  // (a cut corner of a dart: not its convex pieces)
+        const std::vector<double> was_a = chamfers[a], was_b = chamfers[b];
+        bool clear = false;
+        for (const double factor : {0.25, 0.5, 1.0, 2.0, 4.0}) {
+          const double d = factor * thickness;
+          if (d > 0.4 * shortest_edge_at(a, ca) || d > 0.4 * shortest_edge_at(b, cb)) break;
+          chamfers[a][ca] = std::max(was_a[ca], d);
+          chamfers[b][cb] = std::max(was_b[cb], d);
+          try {
+            shape(a, chamfers[a]);
+            shape(b, chamfers[b]);
+          } catch (const InvalidInputError&) {
+            break;  // a top face vanished: no deeper cut
+          }
+          if (!overlap(a, b)) {
+            clear = true;
+            break;
+          }
+        }
+        if (clear) {
+          corners_trimmed_ += 2;
+          continue;
+        }
+        chamfers[a] = was_a;
+        chamfers[b] = was_b;
+        shape(a, chamfers[a]);
+        shape(b, chamfers[b]);
+      }
     }
   }
 }

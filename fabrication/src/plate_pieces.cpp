@@ -44,7 +44,7 @@ Polygon2 on_sheet(const std::vector<Vec3>& bottom, const std::vector<Vec3>& face
     if (residual < best) {
       best = residual;
       out.clear();
-      for (std::size_t i = 0; i < n; ++i) out.push_back(map(face[(i + shift) % n]));
+      for (const Vec3& q : face) out.push_back(map(q));  // (a plate with a corner cut off has more corners)
     }
   }
   return out;
@@ -92,7 +92,7 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
     Polygon2 outline = distinct(piece.panels[0].outline);
     if (signed_area2(outline) < 0.0) std::reverse(outline.begin(), outline.end());
     const Polygon2 top = on_sheet(plates.panel_corners(k), plates.top(k), outline, scale);
-    if (top.size() != outline.size()) continue;
+    if (top.size() < 3) continue;
     piece.cut = grown(top, 0.5 * kerf_mm);
     // Labels inside the top face: the seams along their hinge edges (matched to
     // the outline's edge by direction), then the piece's name. On a small plate

@@ -88,6 +88,8 @@ class ThickPlates {
   /// The panel (mesh face) of plate k.
   std::size_t panel(std::size_t k) const { return plates_[k].face; }
   PanelId panel_id(std::size_t k) const;
+  /// Plate corners cut off (two plates that share only that corner overlapped there at t*).
+  std::size_t corners_trimmed() const { return corners_trimmed_; }
   /// The smallest bevel angle of any plate edge (radians; pi/2: all square).
   double smallest_bevel() const { return smallest_bevel_; }
   /// Area of the panels with a plate (the zero-thickness area).
@@ -160,6 +162,7 @@ class ThickPlates {
   double smallest_bevel_ = 0.0;
   double panel_area_ = 0.0;
   std::vector<Plate> plates_;
+  std::size_t corners_trimmed_ = 0;
   std::vector<HingePair> hinges_;
   std::vector<std::vector<std::size_t>> neighbours_;  ///< per plate: plates on a shared edge
   mutable AssemblyConfiguration configuration_;
