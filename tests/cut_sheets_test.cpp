@@ -22,6 +22,7 @@ using phedra::test::presets;
 
 using namespace phedra;
 using phedra::test::phedra_cli;
+using phedra::test::Run;
 using Catch::Matchers::Contains;
 namespace fs = std::filesystem;
 

@@ -151,7 +151,7 @@ class Designer {
           *entry = between(previous, wanted, middle);
           bool ok = false;
           try {
-            ok = buildable_at_t_star(design_from_json(document_));
+            ok = drag_.buildable(design_from_json(document_));
           } catch (const InvalidInputError&) {
           }
           ++evaluations;
@@ -160,8 +160,13 @@ class Designer {
         *entry = between(previous, wanted, good);
         clamped = true;
       }
-      if (p) document_ = p->preset;
-      build(document_);
+      if (p && p->design) {
+        document_ = std::move(p->preset);
+        build(std::move(*p->design));
+      } else {
+        if (p) document_ = std::move(p->preset);
+        build(document_);
+      }
       val v = val::object();
       v.set("ok", true);
       v.set("projected", p ? p->moved : false);
@@ -221,22 +226,27 @@ class Designer {
   }
 
   val build(const nlohmann::json& document) {
-    {
-      Design design = design_from_json(document);
-      AssemblyMesh mesh = panel_mesh(design);
-      mesh_ = std::move(mesh);
-      plates_.reset();  // its plates refer to the design it replaces
-      design_.emplace(std::move(design));
+    Design design = design_from_json(document);
+    if (&document != &document_) document_ = document;
+    return build(std::move(design));
+  }
+
+  /// Shows `design` (that of document_); the panel mesh is kept when it is the
+  /// same (a drag step).
+  val build(Design&& design) {
+    if (!design_ || !same_panel_mesh(*design_, design)) {
+      mesh_ = panel_mesh(design);
       positions_.assign(3 * mesh_.vertices.size(), 0.0);
       faces_.clear();
       for (const Quad& q : mesh_.faces) {
         for (std::size_t c : q) faces_.push_back(static_cast<std::uint32_t>(c));
       }
-      if (&document != &document_) document_ = document;
-      val ok = val::object();
-      ok.set("ok", true);
-      return ok;
     }
+    plates_.reset();  // its plates refer to the design it replaces
+    design_.emplace(std::move(design));
+    val ok = val::object();
+    ok.set("ok", true);
+    return ok;
   }
 
  public:

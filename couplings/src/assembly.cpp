@@ -133,6 +133,10 @@ AssemblyConfiguration Assembly::evaluate(double t) const {
 
 const std::vector<std::vector<VertexRef>>& Assembly::shared_vertices() const {
   if (shared_) return *shared_;
+  if (members_.size() < 2) {  // only vertices of different members are joined
+    shared_.emplace();
+    return *shared_;
+  }
   // All vertices sorted by x; a sweep joins those of different members closer than eps.
   std::vector<VertexRef> all;
   for (std::size_t m = 0; m < members_.size(); ++m) {

@@ -40,4 +40,16 @@ AssemblyMesh panel_mesh(const Design& design) {
   return welded_mesh(design.assembly, design.merge ? SharedWalls::remove : SharedWalls::keep_one);
 }
 
+bool same_panel_mesh(const Design& a, const Design& b) {
+  const Assembly& x = a.assembly;
+  const Assembly& y = b.assembly;
+  if (a.merge != b.merge || x.member_count() != y.member_count()) return false;
+  for (std::size_t m = 0; m < x.member_count(); ++m) {
+    const GridTopology& s = x.topology(m);
+    const GridTopology& t = y.topology(m);
+    if (s.rows() != t.rows() || s.columns() != t.columns() || s.cyclic() != t.cyclic()) return false;
+  }
+  return x.shared_vertices() == y.shared_vertices();
+}
+
 }  // namespace phedra

@@ -73,19 +73,24 @@ std::vector<double> trajectory_line(const DesignVariables& fields, long held, in
 
 }  // namespace
 
-bool buildable_at_t_star(const Design& design) {
-  return all_panels_simple(design) && !self_intersection_at_t_star(design);
+bool buildable_at_t_star(const Design& design, TStarCollisions* collisions) {
+  if (!all_panels_simple(design)) return false;
+  return collisions ? !collisions->check(design) : !self_intersection_at_t_star(design);
 }
 
 std::optional<Projection> project_buildable(const json& preset, const ProjectionOptions& options) {
   const Clock::time_point start = Clock::now();
   Projection out;
-  const Design input = design_from_json(preset);
+  auto collides = [&](const Design& design) {
+    return options.collisions ? options.collisions->check(design).has_value() : self_intersection_at_t_star(design).has_value();
+  };
+  Design input = design_from_json(preset);
   ++out.evaluations;
   const bool simple = all_panels_simple(input);  // (the collision check at t* costs far more: only then)
-  if (simple && !self_intersection_at_t_star(input)) {
+  if (simple && !collides(input)) {
     out.preset = preset;
     out.how = "already";
+    out.design.emplace(std::move(input));
     return out;
   }
   RepairOptions search;
@@ -198,7 +203,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
         bad = middle;
       }
     }
-    if (self_intersection_at_t_star(*chosen)) continue;
+    if (collides(*chosen)) continue;
     std::vector<double> x = line.fields->start();
     for (std::size_t k = 0; k < x.size(); ++k) x[k] += good * line.d[k];
     if (line.fields == &*variables) {
@@ -206,6 +211,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
       for (std::size_t k = 0; k < x.size(); ++k) out.displacement[k] = good * line.d[k];
     }
     out.preset = line.fields->preset_at(x);
+    out.design.emplace(std::move(*chosen));
     out.moved = true;
     out.how = line.how;
     out.window = line.window;
@@ -225,7 +231,9 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
   out.how = "search";
   out.displacement.assign(x.size(), 0.0);
   for (std::size_t k = 0; k < x.size(); ++k) out.displacement[k] = x[k] - x0[k];
-  if (!buildable_at_t_star(design_from_json(out.preset))) return std::nullopt;
+  Design found = design_from_json(out.preset);
+  if (!all_panels_simple(found) || collides(found)) return std::nullopt;
+  out.design.emplace(std::move(found));
   return out;
 }
 
@@ -254,6 +262,7 @@ std::optional<Projection> KeepBuildableDrag::step(const json& preset, const std:
   options.origin_size = origin_size_;
   options.first_window = window_;
   options.continue_along.clear();
+  if (!options.collisions) options.collisions = &collisions_;
   if (held == held_ && !displacement_.empty()) {
     const double ratio = change != 0.0 && change_ != 0.0 ? change / change_ : 1.0;
     for (double d : displacement_) options.continue_along.push_back(ratio * d);

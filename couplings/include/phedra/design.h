@@ -38,4 +38,8 @@ Design grid_design(ControlPolylines input, const std::vector<double>& u_heights,
 /// two members share is one panel of both, or deleted when the preset merges.
 AssemblyMesh panel_mesh(const Design& design);
 
+/// Whether two designs have the same panel mesh (faces, vertex references, shared
+/// walls): the same members' grids, shared vertices and merging; their positions may differ.
+bool same_panel_mesh(const Design& a, const Design& b);
+
 }  // namespace phedra

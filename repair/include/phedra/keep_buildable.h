@@ -6,6 +6,7 @@
 
 #include "phedra/design.h"
 #include "phedra/design_variables.h"
+#include "phedra/t_star_collisions.h"
 
 #include <nlohmann/json.hpp>
 
@@ -41,10 +42,14 @@ struct ProjectionOptions {
   /// trajectory edge turned nearly into its profile plane sends the axial net
   /// far out while every panel stays simple.
   double origin_size = 0.0;
+  /// The collision check at t*, kept between the steps of a drag (KeepBuildableDrag's:
+  /// only what moved is tested again); null: each check from scratch.
+  TStarCollisions* collisions = nullptr;
 };
 
 struct Projection {
   nlohmann::json preset;   ///< the design to show
+  std::optional<Design> design;  ///< it, built (the caller need not build it again)
   bool moved = false;      ///< other fields than the held one changed
   std::size_t evaluations = 0;
   /// How the varied fields moved (DesignVariables order, the held one 0): for
@@ -56,8 +61,8 @@ struct Projection {
 };
 
 /// Every panel simple and the configuration at t* free of collisions: what a
-/// keep-buildable drag keeps at every step.
-bool buildable_at_t_star(const Design& design);
+/// keep-buildable drag keeps at every step (`collisions`: the check at t* to use).
+bool buildable_at_t_star(const Design& design, TStarCollisions* collisions = nullptr);
 
 /// One step of a keep-buildable drag: `preset` itself when every panel is simple
 /// and t* is free of collisions, else the nearest such design changing only
@@ -85,6 +90,9 @@ class KeepBuildableDrag {
   std::optional<Projection> step(const nlohmann::json& preset, const std::string& held, const nlohmann::json& previous,
                                  ProjectionOptions options = {});
 
+  /// buildable_at_t_star with this drag's collision check (the designer's stop at the wall).
+  bool buildable(const Design& design) { return buildable_at_t_star(design, &collisions_); }
+
  private:
   std::string held_;
   std::vector<double> displacement_;
@@ -92,6 +100,7 @@ class KeepBuildableDrag {
   int window_ = 0;
   nlohmann::json origin_;  ///< the preset when the drag of held_ began
   double origin_size_ = 0.0;  ///< its model size
+  TStarCollisions collisions_;  ///< kept from step to step (and from drag to drag)
 };
 
 }  // namespace phedra
