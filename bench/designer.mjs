@@ -16,7 +16,7 @@
 // frame, and how many frames a 60 Hz display would have missed.
 // Both software renderers of this GPU-less machine are measured (llvmpipe, SwiftShader):
 // `frame` waits for the drawn frame (a pixel read back), so it includes the rasterization.
-// usage: node bench/designer.mjs PHEDRA_BINARY [--runs N] [--json] [--profiles A,B,...]
+// usage: node bench/designer.mjs PHEDRA_BINARY [--runs N] [--json] [--vertices A,B,...]
 //                                [--renderers llvmpipe,swiftshader]
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -27,11 +27,11 @@ const args = process.argv.slice(2);
 const option = (name, fallback) => { const k = args.indexOf(name); return k >= 0 ? args[k + 1] : fallback; };
 const phedra = args[0];
 if (!phedra || phedra.startsWith('--')) {
-  console.error('usage: node bench/designer.mjs PHEDRA_BINARY [--runs N] [--json] [--profiles A,B,...] [--renderers llvmpipe,swiftshader]');
+  console.error('usage: node bench/designer.mjs PHEDRA_BINARY [--runs N] [--json] [--vertices A,B,...] [--renderers llvmpipe,swiftshader]');
   process.exit(2);
 }
 const runs = Number(option('--runs', '40'));
-const profiles = option('--profiles', '112,1112,11112').split(',').map(Number);
+const sizes = option('--vertices', '1000,10000,100000').split(',').map(Number);
 const chosen = option('--renderers', 'llvmpipe,swiftshader').split(',');
 for (const r of chosen) {
   if (!renderers[r]) {
@@ -71,7 +71,7 @@ try {
   for (const renderer of chosen) {
     const browser = await launch(renderer);
     try {
-      for (const count of profiles) {
+      for (const count of sizes) {
         const file = path.join(scratch, `helix-${count}.json`);
         writeFileSync(file, JSON.stringify(helixPreset(count)));
         const { server, address } = await serve(phedra, file, /http:\/\/127\.0\.0\.1:\d+\/designer\.html/);
@@ -113,7 +113,8 @@ if (args.includes('--json')) {
     console.log([r.renderer, String(r.vertices), String(r.panels), ms(r.core), ms(r.step), ms(r.full), r.ratio.toFixed(2), ms(r.frame), ms(r.load), ms(r.keep), ms(r.keepProjection)]
       .map((c) => c.padStart(15)).join(''));
   }
-  console.log('keep: a keep-buildable drag step of trajectory point 1 (the check at t*: simple panels, no collision);');
+  console.log(`keep: a keep-buildable drag step of trajectory point 1 (the check at t*: simple panels, no collision;`);
+  console.log(`  ${results.map((r) => `${r.kept} of ${runs}`).join(', ')} steps buildable as the hand put them, the others projected or stopped);`);
   console.log('keep, crossing: steps of apex height 1 dragged where panels would cross: the other heights projected');
   console.log(`(${results.map((r) => r.projected).join(', ')} steps) or the handle stopped at the wall (${results.map((r) => r.clamped).join(', ')} steps)`);
   console.log(`canvas ${results[0]?.canvas.join(' x ')} pixels, headless Chromium; WebGL on:`);

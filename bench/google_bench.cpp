@@ -11,8 +11,12 @@
 #include "phedra/phedron.h"
 #include "phedra/design_preset.h"
 #include "phedra/self_intersection.h"
+#include "phedra/keep_buildable.h"
+#include "phedra/assembly_mesh.h"
 
 #include <benchmark/benchmark.h>
+
+#include <cmath>
 
 namespace {
 
@@ -41,6 +45,33 @@ void collision_at_t_star(benchmark::State& state) {
   const Design design = design_from_json(bench::designer_helix_preset(static_cast<std::size_t>(state.range(0))));
   for (auto _ : state) benchmark::DoNotOptimize(self_intersection_at_t_star(design));
   state.counters["panels"] = static_cast<double>(panel_mesh(design).faces.size());
+}
+
+/// The parts of a keep-buildable drag step on the browser designer bench's model
+/// of 10^4 vertices: the design built from its preset (0), its panel mesh (1), a
+/// whole KeepBuildableDrag step of trajectory point 1 (2, 1e-3 up and down as
+/// bench/designer.mjs moves it), as the designer's Designer.keep runs it.
+void keep_step(benchmark::State& state) {
+  nlohmann::json preset = bench::designer_grid_helix_preset(10000);
+  const nlohmann::json start = preset["trajectory"][1];
+  KeepBuildableDrag drag;
+  int k = 0;
+  for (auto _ : state) {
+    const nlohmann::json previous = preset["trajectory"][1];
+    preset["trajectory"][1] = {start[0].get<double>(), start[1].get<double>(), start[2].get<double>() + 1e-3 * std::sin(++k)};
+    if (state.range(0) == 0) {
+      benchmark::DoNotOptimize(design_from_json(preset).assembly.model_size());
+    } else if (state.range(0) == 1) {
+      static const Design design = design_from_json(preset);
+      benchmark::DoNotOptimize(panel_mesh(design).faces.size());
+    } else {
+      ProjectionOptions options;
+      options.max_seconds = 1.0;
+      const std::optional<Projection> p = drag.step(preset, "/trajectory/1", previous, options);
+      if (!p || p->how != "already") state.SkipWithError("the step did not stay buildable");
+      benchmark::DoNotOptimize(p);
+    }
+  }
 }
 
 void write_buffer(benchmark::State& state) {
@@ -92,4 +123,5 @@ BENCHMARK(construction)->Arg(10000)->Unit(benchmark::kMillisecond);
 BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(1);  // 0: --closure-only
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
+BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

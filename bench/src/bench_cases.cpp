@@ -88,4 +88,23 @@ nlohmann::json designer_helix_preset(std::size_t strips) {
           {"signs", "++++++"}};
 }
 
+nlohmann::json designer_grid_helix_preset(std::size_t vertices) {
+  const std::size_t profiles = static_cast<std::size_t>(std::lround(std::sqrt(static_cast<double>(vertices)))) + 1;
+  const std::size_t m = profiles - 1, heights = profiles - 2;
+  const double s = 10.0 / static_cast<double>(profiles);
+  nlohmann::json trajectory = nlohmann::json::array(), directions = nlohmann::json::array(), apex = nlohmann::json::array();
+  for (std::size_t i = 0; i <= m; ++i) {
+    const double q = 0.33 * 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(m);
+    trajectory.push_back({3.0 * std::cos(q), 3.0 * std::sin(q), 1.32 * static_cast<double>(i) / static_cast<double>(m)});
+    const double r = q - 20.0 * std::numbers::pi / 180.0;
+    directions.push_back({std::cos(r), std::sin(r), 0.0});
+  }
+  for (std::size_t k = 0; k < heights; ++k) apex.push_back(s * (0.5 * static_cast<double>(k) + (k % 2 ? 2.5 : 0.0) - 1.5));
+  return {{"name", "helix-" + std::to_string(profiles) + "x" + std::to_string(heights + 1)},
+          {"trajectory", trajectory},
+          {"directions", directions},
+          {"apex_heights", apex},
+          {"signs", std::string(heights - 2, '+')}};
+}
+
 }  // namespace phedra::bench

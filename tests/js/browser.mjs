@@ -47,15 +47,21 @@ export function canvasColours(page) {
   });
 }
 
-/// An open P-hedron of `profiles` profiles on a third of a helix, 8 apexes all +:
-/// 9 * profiles vertices (the 10^4-vertex model of issue 8 has 1112 profiles).
-export function helixPreset(profiles) {
-  const m = profiles - 1, trajectory = [], directions = [];
+/// An open P-hedron of about `vertices` vertices on a third of a helix, all signs +
+/// (10^4: 101 profiles of 100 vertices, 9,900 panels).
+export function helixPreset(vertices) {
+  // About sqrt(N) profiles on a third of a helix's turn and as many apex heights
+  // (climbing in a zigzag, scaled with the profiles' spacing): panels about as
+  // wide as long, every one simple, the motion free of collisions (buildable
+  // with the default size bounds: a 9-column helix of 10^4 vertices had slivers).
+  const profiles = Math.round(Math.sqrt(vertices)) + 1, m = profiles - 1, heights = profiles - 2, s = 10 / profiles;
+  const trajectory = [], directions = [], apex_heights = [];
   for (let i = 0; i <= m; ++i) {
     const q = 0.33 * 2 * Math.PI * i / m;
     trajectory.push([3 * Math.cos(q), 3 * Math.sin(q), 1.32 * i / m]);
     const r = q - 20 * Math.PI / 180;  // turned this way every panel is simple and the motion collision-free
     directions.push([Math.cos(r), Math.sin(r), 0]);
   }
-  return { name: `helix-${profiles}`, trajectory, directions, apex_heights: [-1.5, 1.0, -0.5, 2.2, 0.4, 3.0, 1.6, 3.8], signs: '++++++' };
+  for (let k = 0; k < heights; ++k) apex_heights.push(s * (0.5 * k + (k % 2 ? 2.5 : 0) - 1.5));
+  return { name: `helix-${profiles}x${heights + 1}`, trajectory, directions, apex_heights, signs: '+'.repeat(heights - 2) };
 }

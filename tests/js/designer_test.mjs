@@ -530,7 +530,7 @@ try {
   check(rowPreset.row?.free_heights.length === 2 && rowPreset.tube?.type === 'parallelogram', `row preset: ${JSON.stringify(rowPreset.row)}`);
 
   // Real time: edits of a 10^4-vertex model.
-  const big = helixPreset(1112);
+  const big = helixPreset(10000);
   const bigAccepted = await api((p) => window.phedraDesigner.apply(p), big);
   check(bigAccepted, `the 10^4-vertex preset was refused: ${await api(() => window.phedraDesigner.message())}`);
   if (bigAccepted) {

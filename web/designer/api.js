@@ -89,7 +89,8 @@ export function installApi({ camera, renderer, state, designer, surface, handles
     /// changes, the JSON editor); `keep`, the step of a keep-buildable drag
     /// (Designer.keep: the check at t*), and `keepProjection`, such steps of a
     /// height dragged where panels would cross (the other heights projected, or
-    /// the handle stopped: `projected`, `clamped` count them).
+    /// the handle stopped: `projected`, `clamped` count them; `kept`: the keep
+    /// steps that needed neither).
     measure(runs) {
       const start = clone(state.preset);
       const moved = (k) => start.trajectory[1].map((x, i) => x + (i === 2 ? 1e-3 * Math.sin(k) : 0));
@@ -125,11 +126,10 @@ export function installApi({ camera, renderer, state, designer, surface, handles
       // Keep-buildable steps (issue 14): the check at t* (simple panels, no
       // collision), and the projection of the apex heights when it fails.
       $('keep').checked = true;
-      let projected = 0, clamped = 0;
+      let projected = 0, clamped = 0, kept = 0;
       const keep = time((k) => {
         applyEdit({ key: 'trajectory', index: 1, value: moved(k) });
-        projected += checks.lastKeep?.projected ? 1 : 0;
-        clamped += checks.lastKeep?.clamped ? 1 : 0;
+        kept += checks.lastKeep?.how === 'already' ? 1 : 0;  // buildable as the hand put it
       });
       // A height dragged where its panels would cross (z1 below z2: the '+' faces
       // of that column cross): the other heights follow, or the handle stops.
@@ -150,7 +150,7 @@ export function installApi({ camera, renderer, state, designer, surface, handles
       });
       dragging.current = wasDragging;
       apply(start);
-      return { vertices: state.info.vertices, panels: state.info.faces, core, step, full, frame, ratio, load, keep, keepProjection, projected, clamped };
+      return { vertices: state.info.vertices, panels: state.info.faces, core, step, full, frame, ratio, load, keep, kept, keepProjection, projected, clamped };
     },
   };
 }

@@ -45,4 +45,9 @@ nlohmann::json unbuildable_open_preset(std::size_t strips);
 /// strips on a third of a helix, profile planes turned by -20 degrees, 8 apexes all '+'.
 nlohmann::json designer_helix_preset(std::size_t strips);
 
+/// The browser designer bench's model (tests/js/browser.mjs helixPreset): about
+/// `vertices` vertices, sqrt(N) profiles on a third of a helix and as many apex
+/// heights in a climbing zigzag; buildable with the default size bounds.
+nlohmann::json designer_grid_helix_preset(std::size_t vertices);
+
 }  // namespace phedra::bench
