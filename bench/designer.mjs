@@ -30,6 +30,13 @@ if (!phedra || phedra.startsWith('--')) {
   console.error('usage: node bench/designer.mjs PHEDRA_BINARY [--runs N] [--json] [--vertices A,B,...] [--renderers llvmpipe,swiftshader]');
   process.exit(2);
 }
+const known = { '--runs': 1, '--json': 0, '--vertices': 1, '--renderers': 1 };
+for (let k = 1; k < args.length; k += 1 + (known[args[k]] ?? 0)) {
+  if (!(args[k] in known)) {
+    console.error(`unknown option "${args[k]}" (known: ${Object.keys(known).join(', ')})`);
+    process.exit(2);
+  }
+}
 const runs = Number(option('--runs', '40'));
 const sizes = option('--vertices', '1000,10000,100000').split(',').map(Number);
 const chosen = option('--renderers', 'llvmpipe,swiftshader').split(',');
