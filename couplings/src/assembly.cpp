@@ -77,9 +77,9 @@ std::size_t Assembly::total_vertex_count() const {
   return count;
 }
 
-void Assembly::write_user(std::size_t m, const NetState& state, Points& out) const {
+void Assembly::write_user(std::size_t m, const NetState& state, Points& out, NetWriter::Kind kind) const {
   const std::size_t n = state.apexes.size() - 1;
-  const NetWriter writer(base_.frame(), members_[m].closed, n, out);
+  const NetWriter writer(base_.frame(), members_[m].closed, n, out, kind);
   const std::size_t rows = members_[m].topology.rows();
   for (std::size_t i = 0; i < rows; ++i) {
     writer.write(i, state.apexes.data(), &state.axial[i * n], &state.general[i * n]);
@@ -107,9 +107,35 @@ void Assembly::evaluate(double t, const std::vector<bool>& flipped, AssemblyConf
 }
 
 void Assembly::evaluate_on(double t, const std::vector<bool>* flipped, AssemblyConfiguration& out) const {
-  std::vector<NetState>& states = out.states;
-  evaluate_states(t, states, flipped);
+  evaluate_states(t, out.states, flipped);
   out.t = t;
+  write_configuration(out);
+}
+
+bool Assembly::evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const {
+  std::vector<NetState>& states = out.states;
+  states.resize(members_.size());
+  std::vector<NetState> rate_states(members_.size());
+  const bool finite = base_.evaluate_canonical_rate(t, states[0], rate_states[0]);
+  rates.resize(members_.size());
+  for (std::size_t m = 1; m < members_.size(); ++m) {
+    const std::size_t parent = members_[m].seeded->seed().parent;
+    const std::size_t columns = states[parent].apexes.size() - 1;
+    members_[m].seeded->evaluate(states[parent], columns, states[m]);
+    if (finite) members_[m].seeded->evaluate(rate_states[parent], columns, rate_states[m]);
+  }
+  out.t = t;
+  write_configuration(out);
+  if (!finite) return false;
+  for (std::size_t m = 0; m < members_.size(); ++m) {
+    rates[m].resize(members_[m].topology.vertex_count());
+    write_user(m, rate_states[m], rates[m], NetWriter::Kind::rates);
+  }
+  return true;
+}
+
+void Assembly::write_configuration(AssemblyConfiguration& out) const {
+  const std::vector<NetState>& states = out.states;
   out.members.resize(members_.size());
   out.closure.assign(members_.size(), ClosureGap{});
   for (std::size_t m = 0; m < members_.size(); ++m) {

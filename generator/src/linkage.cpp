@@ -54,4 +54,15 @@ bool Linkage::start(double t, LinkageStart& out, double& margin) const {
   return true;
 }
 
+bool Linkage::rate(double t, const LinkageStart& at, LinkageStart& out) const {
+  // x dx/dt = -t; the other apex o keeps x^2 + o^2 = r_other^2: o do/dt = -x dx/dt = t.
+  const double other = case_ == MotionCase::a ? at.s1 : at.s0;
+  if (!(at.x > 0.0) || other == 0.0) return false;
+  out.x = -t / at.x;
+  const double d_other = t / other;
+  out.s0 = case_ == MotionCase::a ? 1.0 : d_other;
+  out.s1 = case_ == MotionCase::a ? d_other : 1.0;
+  return std::isfinite(out.x) && std::isfinite(d_other);
+}
+
 }  // namespace phedra

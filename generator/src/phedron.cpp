@@ -355,6 +355,39 @@ void PHedron::evaluate_canonical(double t, Points& axial, Points& general, std::
   });
 }
 
+bool PHedron::evaluate_canonical_rate(double t, NetState& state, NetState& rate,
+                                      const std::vector<bool>* flipped) const {
+  const LinkageStart start = start_at(t);
+  LinkageStart d;
+  // At the flexion limits the rate is infinite (a square root's at zero): the
+  // limits are known to about 1e-12, where the computed rate is merely large.
+  bool finite = t != interval_.lower.t && t != interval_.upper.t && linkage_.rate(canonical_t(t), start, d);
+  const std::size_t n = motion_.columns(), rows = motion_.rows();
+  for (NetState* x : {&state, &rate}) {
+    x->axial.resize(rows * n);
+    x->general.resize(rows * n);
+    x->apexes.resize(n + 1);
+  }
+  motion_.complete_first_row(start.s0, start.s1, Vec3(start.x, 0, 0), state.apexes.data(), state.axial.data());
+  motion_.complete_first_row(d.s0, d.s1, Vec3(d.x, 0, 0), rate.apexes.data(), rate.axial.data());
+  std::copy(state.axial.begin(), state.axial.begin() + n, state.general.begin());
+  std::copy(rate.axial.begin(), rate.axial.begin() + n, rate.general.begin());
+  const double* s = state.apexes.data();
+  const double* ds = rate.apexes.data();
+  for (std::size_t i = 1; i < rows; ++i) {
+    const Vec3& previous = state.axial[(i - 1) * n];
+    Vec3& a0 = state.axial[i * n];
+    advance_column(i, t, s, previous, a0, flipped);
+    finite = finite && chain_.rate(s[0], s[1], previous, a0, ds[0], ds[1], rate.axial[(i - 1) * n], rate.axial[i * n]);
+    for (NetState* x : {&state, &rate}) {
+      Vec3* row = &x->axial[i * n];
+      motion_.fill_row(i, x->apexes.data(), row);
+      motion_.advance_general_row(i, row - n, row, &x->general[(i - 1) * n], &x->general[i * n]);
+    }
+  }
+  return finite;
+}
+
 std::vector<double> PHedron::apex_heights(double t) const {
   const LinkageStart start = start_at(t);
   std::vector<double> heights(motion_.columns() + 1);

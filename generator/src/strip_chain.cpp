@@ -61,6 +61,18 @@ bool StripChain::advance(std::size_t i, double s0, double s1, const Vec3& p, Vec
   return radius2 > 0.0 && rho2 > 0.0;
 }
 
+bool StripChain::rate(double s0, double s1, const Vec3& p, const Vec3& x, double ds0, double ds1,
+                      const Vec3& dp, Vec3& out) const {
+  // |X - S_0|, |X - S_1|, |X - P| constant: (X - S_0) . (dX - dS_0) = 0 and so on.
+  const Vec3 a = x - Vec3(0, 0, s0), b = x - Vec3(0, 0, s1), c = x - p;
+  const double ra = a.z() * ds0, rb = b.z() * ds1, rc = c.dot(dp);
+  const Vec3 bc = b.cross(c), ca = c.cross(a), ab = a.cross(b);
+  const double det = a.dot(bc);
+  if (det == 0.0) return false;
+  out = (ra * bc + rb * ca + rc * ab) / det;
+  return out.allFinite();
+}
+
 double StripChain::strip_value(std::size_t k, double h, double r2, double previous_h, double previous_r2) const {
   // c = (r2 + r2_prev + dz^2 - rp^2) / (2 r r_prev) as in advance(), and
   // 1 - c^2 = (4 r2 r2_prev - num^2) / (4 r2 r2_prev) without a square root.

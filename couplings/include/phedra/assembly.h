@@ -5,6 +5,7 @@
 // the recursions of the members, parents before children; the flexion interval
 // is the base's (the members' profile planes are the base's).
 
+#include "phedra/net_writer.h"
 #include "phedra/phedron.h"
 #include "phedra/seeded_member.h"
 
@@ -74,6 +75,11 @@ class Assembly {
   /// On a branch of the base (PHedron::evaluate): the members follow it.
   void evaluate(double t, const std::vector<bool>& flipped, AssemblyConfiguration& out) const;
   AssemblyConfiguration evaluate(double t) const;
+  /// The positions at t (into `out`) and their exact rates dX/dt, member by
+  /// member in topology order (PHedron::evaluate_canonical_rate; the members'
+  /// recursions are linear in their parent's state). Returns false at a flexion
+  /// limit, where the rates are infinite (`out` is complete then, `rates` not).
+  bool evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const;
 
   /// Groups of vertices of different members that coincide at t* (within 1e-9 of
   /// the model size): the vertices the couplings share. They must stay together.
@@ -89,7 +95,10 @@ class Assembly {
   };
   void evaluate_states(double t, std::vector<NetState>& states, const std::vector<bool>* flipped = nullptr) const;
   void evaluate_on(double t, const std::vector<bool>* flipped, AssemblyConfiguration& out) const;
-  void write_user(std::size_t m, const NetState& state, Points& out) const;
+  void write_user(std::size_t m, const NetState& state, Points& out,
+                  NetWriter::Kind kind = NetWriter::Kind::positions) const;
+  /// out.members and out.closure from out.states.
+  void write_configuration(AssemblyConfiguration& out) const;
 
   PHedron base_;
   NetState base_reference_;

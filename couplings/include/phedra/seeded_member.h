@@ -36,13 +36,6 @@ struct MemberSpec {
   std::string field;
 };
 
-/// The motion state of one member at one t, canonical frame.
-struct NetState {
-  Points axial;                 ///< rows x n, row-major
-  Points general;               ///< rows x n
-  std::vector<double> apexes;   ///< s_0..s_n
-};
-
 class SeededMember {
  public:
   /// `parent_reference` is the parent's state at t*, `parent_heights` its canonical

@@ -36,6 +36,10 @@ class Linkage {
   /// S_0(t), S_1(t), V_{0,0}(t). Returns false when t is past the bound (x^2 < 0);
   /// `margin` gets x^2 / r^2 of the moving bar.
   bool start(double t, LinkageStart& out, double& margin) const;
+  /// d/dt of start(t) at `at` (= start(t)): exact, from x^2 + t^2 = r^2 and the
+  /// other apex's constant distance to V_{0,0}. Returns false at the bound (x = 0),
+  /// where the rate is infinite.
+  bool rate(double t, const LinkageStart& at, LinkageStart& out) const;
 
  private:
   MotionCase case_ = MotionCase::a;

@@ -12,6 +12,14 @@
 
 namespace phedra {
 
+/// The motion state of one net at one t, canonical frame (or its rate d/dt:
+/// every recursion after column 0 is linear, so the rates follow the same ones).
+struct NetState {
+  Points axial;                 ///< rows x n, row-major
+  Points general;               ///< rows x n
+  std::vector<double> apexes;   ///< s_0..s_n
+};
+
 class NetMotion {
  public:
   NetMotion() = default;
@@ -47,7 +55,9 @@ class NetMotion {
   const double* row_scales(std::size_t i) const { return &scales_[i * columns_]; }
 
   /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
-  /// s[0], s[1] and the row's first vertex (in the plane pi_0).
+  /// s[0], s[1] and the row's first vertex (in the plane pi_0). Linear in its
+  /// arguments (as fill_row and advance_general_row are): applied to their rates
+  /// d/dt it gives the rates.
   void complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const;
 
   /// Row i of the axial net from row[0] and the apexes: A[i][j+1] = S_{j+1} + rho (A[i][j] - S_{j+1}).

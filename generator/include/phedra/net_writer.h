@@ -11,8 +11,14 @@ namespace phedra {
 
 class NetWriter {
  public:
-  NetWriter(const CanonicalFrame& frame, bool closed, std::size_t n, std::span<Vec3> out)
-      : to_user_(frame.rotation().transpose()), origin_(frame.origin()), closed_(closed), n_(n), out_(out) {}
+  /// What the rows are: positions, or their rates d/dt (rotated only).
+  enum class Kind { positions, rates };
+  NetWriter(const CanonicalFrame& frame, bool closed, std::size_t n, std::span<Vec3> out, Kind kind = Kind::positions)
+      : to_user_(frame.rotation().transpose()),
+        origin_(kind == Kind::positions ? frame.origin() : Vec3::Zero()),
+        closed_(closed),
+        n_(n),
+        out_(out) {}
 
   /// Output columns per row: n + 2 (open) or n - 1 (closed).
   static std::size_t columns(bool closed, std::size_t n) { return closed ? n - 1 : n + 2; }

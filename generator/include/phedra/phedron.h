@@ -99,6 +99,14 @@ class PHedron {
   void evaluate_canonical(double t, Points& axial, Points& general, std::vector<double>& apexes,
                           const std::vector<bool>* flipped = nullptr) const;
 
+  /// The canonical state at t (as evaluate_canonical) and its exact rate d/dt
+  /// (MATH.md section 4 differentiated: the linkage L_0 and the strip chain in
+  /// closed form, the rest by the same linear recursions). Throws
+  /// OutOfIntervalError outside the flexion interval. Returns false at a flexion
+  /// limit (t_lambda or t_mu), where the rate is infinite (`state` is complete, `rate` is not).
+  bool evaluate_canonical_rate(double t, NetState& state, NetState& rate,
+                               const std::vector<bool>* flipped = nullptr) const;
+
   /// Heights <S_j(t), axis> (user frame) of the apexes S_0..S_n at t.
   std::vector<double> apex_heights(double t) const;
 

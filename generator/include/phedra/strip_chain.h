@@ -38,6 +38,13 @@ class StripChain {
   bool advance(std::size_t i, double s0, double s1, const Vec3& previous, Vec3& out, double& margin,
                bool clamp = false, bool flipped = false) const;
 
+  /// d/dt of V_{i,0} = `at` (advance's result) from the rates of the apexes and of
+  /// V_{i-1,0} = previous: exact, the 3 x 3 system of its constant distances to
+  /// S_0, S_1 and V_{i-1,0} differentiated. Returns false where it is singular
+  /// (det(X-S_0, X-S_1, X-P) = 0: the strip's flexion limit, the rate infinite).
+  bool rate(double s0, double s1, const Vec3& previous, const Vec3& at, double ds0, double ds1,
+            const Vec3& previous_rate, Vec3& out) const;
+
   /// The smallest margin over the strips at apexes s0, s1 with V_{0,0}(t) =
   /// (x, 0, 0), and its strip. Each strip's margin depends only on the heights and
   /// radii of its two circles (V_{i,0} has the height h_i and the distance r_i
