@@ -32,9 +32,6 @@ AssemblyMesh separate_mesh(const Assembly& assembly) {
 }
 
 std::vector<std::size_t> coincident_vertices(const AssemblyMesh& mesh, const Assembly& assembly) {
-  const std::size_t n = mesh.vertices.size();
-  std::vector<std::size_t> representative(n);
-  for (std::size_t v = 0; v < n; ++v) representative[v] = v;
   const FlexionInterval& f = assembly.flexion_interval();
   std::vector<double> ts{assembly.t_star()};
   if (std::isfinite(f.lower.t) && std::isfinite(f.upper.t)) {
@@ -44,7 +41,13 @@ std::vector<std::size_t> coincident_vertices(const AssemblyMesh& mesh, const Ass
   }
   std::vector<Points> at;
   for (double t : ts) at.push_back(mesh.positions(assembly.evaluate(t)));
-  const double tolerance = 1e-9 * assembly.model_size();
+  return coincident_points(at, 1e-9 * assembly.model_size());
+}
+
+std::vector<std::size_t> coincident_points(const std::vector<Points>& at, double tolerance) {
+  const std::size_t n = at.front().size();
+  std::vector<std::size_t> representative(n);
+  for (std::size_t v = 0; v < n; ++v) representative[v] = v;
   std::vector<std::size_t> by_x(n);
   for (std::size_t v = 0; v < n; ++v) by_x[v] = v;
   const Points& first = at.front();

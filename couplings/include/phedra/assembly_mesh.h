@@ -52,6 +52,10 @@ AssemblyMesh welded_mesh(const Assembly& assembly, SharedWalls walls);
 /// through it (welded_faces) so that no edge has zero length.
 std::vector<std::size_t> coincident_vertices(const AssemblyMesh& mesh, const Assembly& assembly);
 
+/// For each point, the lowest-numbered point within `tolerance` of it in every
+/// one of the point sets `at` (all of one size), chained (itself when none).
+std::vector<std::size_t> coincident_points(const std::vector<Points>& at, double tolerance);
+
 /// The faces with each corner replaced by coincident_vertices' choice; a face
 /// with two corners welded repeats an index: the triangle it is (distinct_corners).
 std::vector<Quad> welded_faces(const AssemblyMesh& mesh, const std::vector<std::size_t>& representative);

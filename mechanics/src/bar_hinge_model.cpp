@@ -1,0 +1,257 @@
+#include "phedra/bar_hinge_model.h"
+
+#include "material_calibration.h"
+
+#include "phedra/errors.h"
+#include "phedra/number_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace phedra {
+
+std::string to_string(PanelModel model) { return model == PanelModel::n4b5 ? "n4b5" : "n5b8"; }
+
+PanelModel parse_panel_model(const std::string& name) {
+  if (name == "n4b5") return PanelModel::n4b5;
+  if (name == "n5b8") return PanelModel::n5b8;
+  throw InvalidInputError("--panels", "unknown panel model \"" + name +
+                                          "\" (n4b5: each quad split along its shorter diagonal; n5b8: a centre "
+                                          "node and four spokes, MERLIN2's default)");
+}
+
+void StiffnessOptions::validate() const {
+  auto positive = [](double v, const std::string& option, const std::string& what) {
+    if (!(v > 0.0) || !std::isfinite(v)) {
+      throw InvalidInputError(option, what + " must be positive and finite, got " + format_number(v));
+    }
+  };
+  if (material) {
+    if (panels == PanelModel::n4b5) {
+      throw InvalidInputError("--material", "the calibration from a material is MERLIN2's for n5b8 panels only; "
+                                            "use --panels n5b8, or give --bar, --fold and --bend with n4b5");
+    }
+    positive(material->youngs_modulus, "--material", "Young's modulus E");
+    if (!(material->poisson > 0.0 && material->poisson < 0.5)) {
+      throw InvalidInputError("--material", "Poisson's ratio nu must be in (0, 0.5) (at 0 the n5b8 spokes have no area), got " +
+                                                format_number(material->poisson));
+    }
+    positive(material->thickness, "--thickness", "the plate thickness");
+    if (material->length_scale) positive(*material->length_scale, "--length-scale", "the length scale L*");
+    return;
+  }
+  positive(bar, "--bar", "the bars' stiffness EA");
+  positive(bend, "--bend", "the bending stiffness KB");
+  if (fold) positive(*fold, "--fold", "the fold stiffness KF");
+}
+
+namespace {
+
+struct EdgeUse {
+  std::size_t panel;
+  std::size_t from, to;  ///< the edge as it runs in the panel
+  std::size_t wing;      ///< the third node of the panel's triangle at the edge
+};
+
+std::string panel_name(std::size_t face) { return "panel " + std::to_string(face); }
+
+}  // namespace
+
+BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& at, const StiffnessOptions& options)
+    : t_(at.t), panels_model_(options.panels) {
+  options.validate();
+  const AssemblyMesh mesh = panel_mesh(design);
+  const Points vertices = mesh.positions(at);
+  const double size = design.assembly.model_size();
+  const std::vector<std::size_t> same = coincident_points({vertices}, 1e-9 * size);
+
+  // Corner nodes in the order the panels first use them.
+  mesh_vertex_node_.assign(vertices.size(), SIZE_MAX);
+  std::vector<std::size_t> node_of_representative(vertices.size(), SIZE_MAX);
+  auto node = [&](std::size_t v) {
+    std::size_t& n = node_of_representative[same[v]];
+    if (n == SIZE_MAX) {
+      n = node_vertex_.size();
+      node_vertex_.push_back(mesh.vertices[same[v]]);
+      positions_.push_back(vertices[same[v]]);
+    }
+    mesh_vertex_node_[v] = n;
+    return n;
+  };
+  std::map<std::vector<std::size_t>, std::size_t> seen;  // sorted node set -> panel
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::array<std::size_t, 4> c{};
+    for (int k = 0; k < 4; ++k) c[k] = node(mesh.faces[f][k]);
+    std::vector<std::size_t> corners;
+    for (int k = 0; k < 4; ++k) {
+      if (c[k] != c[(k + 1) % 4]) corners.push_back(c[k]);
+    }
+    std::vector<std::size_t> key = corners;
+    std::sort(key.begin(), key.end());
+    const bool distinct = std::adjacent_find(key.begin(), key.end()) == key.end();
+    if (corners.size() < 3 || !distinct) {
+      throw InvalidInputError(panel_name(f), "its corners collapse onto " + std::to_string(key.size()) +
+                                                 " nodes at t = " + format_number(at.t) +
+                                                 " (not a quad with two adjacent corners merged): the bar-and-hinge "
+                                                 "model has no panel for it");
+    }
+    if (!seen.emplace(key, f).second) {
+      ++dropped_;  // a wall two cells share, modelled once
+      continue;
+    }
+    ModelPanel p;
+    p.face = f;
+    p.corners = corners;
+    triangles_ += corners.size() == 3;
+    panels_.push_back(p);
+  }
+
+  // Bars on the panels' edges, their uses, diagonals or spokes and bending hinges.
+  std::map<std::pair<std::size_t, std::size_t>, std::size_t> bar_of;
+  std::vector<std::vector<EdgeUse>> uses;
+  auto bar = [&](std::size_t a, std::size_t b) {
+    const auto key = std::minmax(a, b);
+    auto [it, added] = bar_of.emplace(key, bars_.size());
+    if (added) {
+      bars_.push_back({{a, b}, (positions_[b] - positions_[a]).norm(), options.bar});
+      uses.emplace_back();
+    }
+    return it->second;
+  };
+  std::vector<Hinge> bends;
+  for (std::size_t pi = 0; pi < panels_.size(); ++pi) {
+    ModelPanel& p = panels_[pi];
+    const std::vector<std::size_t>& v = p.corners;
+    const std::size_t count = v.size();
+    std::vector<std::size_t> wing(count);  // the wing of edge k (v[k] -> v[k+1])
+    if (count == 3) {
+      for (std::size_t k = 0; k < 3; ++k) wing[k] = v[(k + 2) % 3];
+    } else {
+      const double d02 = (positions_[v[2]] - positions_[v[0]]).norm();
+      const double d13 = (positions_[v[3]] - positions_[v[1]]).norm();
+      if (options.panels == PanelModel::n4b5) {
+        if (!(std::abs(d02 - d13) > 1e-6 * std::max(d02, d13))) {
+          throw InvalidInputError(panel_name(p.face), "its diagonals are equal to 1e-6 (|P0-P2| = " +
+                                                          format_number(d02) + ", |P1-P3| = " + format_number(d13) +
+                                                          "): n4b5 has no shorter one to split it along; use --panels n5b8");
+        }
+        const bool on02 = d02 < d13;
+        const std::size_t a = on02 ? 0 : 1;  // the split v[a] - v[a + 2]
+        bar(v[a], v[a + 2]);
+        // MERLIN2's order: [P0 P2 P1 P3] or [P1 P3 P0 P2].
+        bends.push_back({{v[a], v[a + 2], on02 ? v[1] : v[0], on02 ? v[3] : v[2]}, HingeKind::bend,
+                         on02 ? d02 : d13, options.bend, {pi, pi}});
+        // Edge k holds one end of the split; its triangle's third corner is the other end.
+        for (std::size_t k = 0; k < 4; ++k) wing[k] = (k == a || (k + 1) % 4 == a) ? v[a + 2] : v[a];
+      } else {
+        // MERLIN2's centre: the diagonals' lines meet (least squares), taken on the shorter one.
+        const Vec3 m = (positions_[v[2]] - positions_[v[0]]) / d02, n = (positions_[v[3]] - positions_[v[1]]) / d13;
+        Eigen::Matrix<double, 3, 2> system;
+        system << m, -n;
+        const Eigen::Vector2d coefficient = system.colPivHouseholderQr().solve(positions_[v[1]] - positions_[v[0]]);
+        const double along02 = coefficient(0) / d02, along13 = coefficient(1) / d13;
+        if (!(along02 > 0.0 && along02 < 1.0 && along13 > 0.0 && along13 < 1.0)) {
+          throw InvalidInputError(panel_name(p.face),
+                                  "it is not convex at t = " + format_number(at.t) + ": its diagonals' lines meet " +
+                                      format_number(along02) + " of the way along P0-P2 and " + format_number(along13) +
+                                      " along P1-P3, outside the panel, where n5b8 would put its centre node; use "
+                                      "--panels n4b5 (its triangles need no centre)");
+        }
+        p.base = d02 < d13 ? 0 : 1;
+        p.ratio = d02 < d13 ? along02 : along13;
+        const Vec3 centre = positions_[v[p.base]] + p.ratio * (positions_[v[p.base + 2]] - positions_[v[p.base]]);
+        p.centre = positions_.size();
+        positions_.push_back(centre);
+        for (std::size_t k = 0; k < 4; ++k) {
+          const std::size_t b = bar(*p.centre, v[k]);
+          bends.push_back({{*p.centre, v[k], v[(k + 3) % 4], v[(k + 1) % 4]}, HingeKind::bend, bars_[b].length,
+                           options.bend, {pi, pi}});
+          wing[k] = *p.centre;
+        }
+      }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t b = bar(v[k], v[(k + 1) % count]);
+      uses[b].push_back({pi, v[k], v[(k + 1) % count], wing[k]});
+    }
+  }
+  // A fold hinge for every pair of panels at an edge; the edge runs as in the first panel.
+  for (std::size_t b = 0; b < bars_.size(); ++b) {
+    const std::vector<EdgeUse>& u = uses[b];
+    for (std::size_t x = 0; x < u.size(); ++x) {
+      for (std::size_t y = x + 1; y < u.size(); ++y) {
+        hinges_.push_back({{u[x].from, u[x].to, u[x].wing, u[y].wing}, HingeKind::fold, bars_[b].length,
+                           options.fold_value(), {u[x].panel, u[y].panel}});
+      }
+    }
+  }
+  folds_ = hinges_.size();
+  hinges_.insert(hinges_.end(), bends.begin(), bends.end());
+  for (const Hinge& h : hinges_) {
+    const HingeNodes x = hinge_nodes(h, positions_);
+    const double axis = (x.k - x.j).norm();
+    const double wings = std::min((x.i - x.j).cross(x.k - x.j).norm(), (x.k - x.j).cross(x.k - x.l).norm());
+    if (!(wings > 1e-12 * axis * size)) {
+      throw InvalidInputError(panel_name(panels_[h.panels[0]].face),
+                              "a triangle of the model at t = " + format_number(at.t) +
+                                  " has no area (a wing on its hinge's axis): the hinge's angle is undefined");
+    }
+  }
+  if (options.material) calibrate_from_material(*options.material, panels_, positions_, bars_, hinges_);
+}
+
+void BarHingeModel::node_positions(const AssemblyConfiguration& c, Points& out) const {
+  out.resize(positions_.size());
+  for (std::size_t n = 0; n < node_vertex_.size(); ++n) out[n] = c.members[node_vertex_[n].member][node_vertex_[n].vertex];
+  for (const ModelPanel& p : panels_) {
+    if (!p.centre) continue;
+    const Vec3& a = out[p.corners[p.base]];
+    out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
+  }
+}
+
+void BarHingeModel::node_rates(const std::vector<Points>& member_rates, Points& out) const {
+  out.resize(positions_.size());
+  for (std::size_t n = 0; n < node_vertex_.size(); ++n) out[n] = member_rates[node_vertex_[n].member][node_vertex_[n].vertex];
+  for (const ModelPanel& p : panels_) {
+    if (!p.centre) continue;
+    const Vec3& a = out[p.corners[p.base]];
+    out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
+  }
+}
+
+double BarHingeModel::angle(std::size_t h, const Points& x) const { return hinge_angle(hinge_nodes(hinges_[h], x)); }
+
+Eigen::SparseMatrix<double> BarHingeModel::stiffness() const {
+  std::vector<Eigen::Triplet<double>> entries;
+  entries.reserve(bars_.size() * 36 + hinges_.size() * 144);
+  for (const Bar& b : bars_) {
+    const Vec3 e = (positions_[b.nodes[1]] - positions_[b.nodes[0]]) / b.length;
+    const Mat3 block = (b.stiffness / b.length) * (e * e.transpose());
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) {
+        const double sign = r == c ? 1.0 : -1.0;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) entries.emplace_back(3 * b.nodes[r] + i, 3 * b.nodes[c] + j, sign * block(i, j));
+      }
+    }
+  }
+  for (const Hinge& h : hinges_) {
+    const std::array<Vec3, 4> g = hinge_angle_gradient(hinge_nodes(h, positions_));
+    const double k = h.stiffness * h.length;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) {
+        const Mat3 block = k * (g[r] * g[c].transpose());
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) entries.emplace_back(3 * h.nodes[r] + i, 3 * h.nodes[c] + j, block(i, j));
+      }
+    }
+  }
+  const Eigen::Index n = static_cast<Eigen::Index>(3 * positions_.size());
+  Eigen::SparseMatrix<double> k(n, n);
+  k.setFromTriplets(entries.begin(), entries.end());
+  return k;
+}
+
+}  // namespace phedra

@@ -1,0 +1,126 @@
+#include "phedra/mobility.h"
+
+#include "phedra/stiffness_modes.h"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+namespace phedra {
+namespace {
+
+/// The rows of C over the corner nodes: edges and shorter diagonals as bars
+/// (unit direction), bending hinges across the diagonals (gradient times length).
+Eigen::SparseMatrix<double> compatibility(const BarHingeModel& model) {
+  const Points& x = model.positions();
+  std::vector<Eigen::Triplet<double>> entries;
+  std::map<std::pair<std::size_t, std::size_t>, bool> bars;
+  Eigen::Index row = 0;
+  auto bar = [&](std::size_t a, std::size_t b) {
+    if (!bars.emplace(std::minmax(a, b), true).second) return;
+    const Vec3 e = (x[b] - x[a]).normalized();
+    for (int c = 0; c < 3; ++c) {
+      entries.emplace_back(row, 3 * a + c, -e(c));
+      entries.emplace_back(row, 3 * b + c, e(c));
+    }
+    ++row;
+  };
+  for (const ModelPanel& p : model.panels()) {
+    const std::vector<std::size_t>& v = p.corners;
+    for (std::size_t k = 0; k < v.size(); ++k) bar(v[k], v[(k + 1) % v.size()]);
+    if (v.size() == 3) continue;
+    const std::size_t a = (x[v[2]] - x[v[0]]).norm() <= (x[v[3]] - x[v[1]]).norm() ? 0 : 1;
+    bar(v[a], v[a + 2]);
+    const std::array<std::size_t, 4> nodes{v[a], v[a + 2], v[a + 1], v[(a + 3) % 4]};
+    const HingeNodes h{x[nodes[0]], x[nodes[1]], x[nodes[2]], x[nodes[3]]};
+    const std::array<Vec3, 4> g = hinge_angle_gradient(h);
+    const double length = (h.k - h.j).norm();
+    for (int n = 0; n < 4; ++n) {
+      for (int c = 0; c < 3; ++c) entries.emplace_back(row, 3 * nodes[n] + c, length * g[n](c));
+    }
+    ++row;
+  }
+  Eigen::SparseMatrix<double> c(row, 3 * static_cast<Eigen::Index>(model.corner_node_count()));
+  c.setFromTriplets(entries.begin(), entries.end());
+  return c;
+}
+
+}  // namespace
+
+Mobility mobility(const BarHingeModel& model, const std::optional<Eigen::VectorXd>& velocity) {
+  Mobility m;
+  m.nodes = model.corner_node_count();
+  const Points corners(model.positions().begin(), model.positions().begin() + static_cast<std::ptrdiff_t>(m.nodes));
+  const Eigen::SparseMatrix<double> c = compatibility(model);
+  m.constraints = static_cast<std::size_t>(c.rows());
+  const Eigen::Index n = c.cols();
+  const Eigen::MatrixXd rigid = rigid_motion_basis(corners);
+  // The singular values of C restricted to the complement of the rigid motions, ascending.
+  Eigen::VectorXd sigma;
+  Eigen::MatrixXd null_basis;  // candidates for the mechanisms, in the same order
+  double largest = 0.0;
+  if (n <= 2400) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rigid);
+    const Eigen::MatrixXd q = (qr.householderQ() * Eigen::MatrixXd::Identity(n, n)).rightCols(n - 6);
+    const Eigen::MatrixXd reduced = Eigen::MatrixXd(c) * q;
+    const Eigen::BDCSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeFullV);
+    const Eigen::VectorXd s = svd.singularValues();  // descending, min(rows, n - 6) of them
+    largest = s.size() > 0 ? s(0) : 0.0;
+    const Eigen::Index columns = n - 6;
+    sigma = Eigen::VectorXd::Zero(columns);
+    sigma.head(s.size()) = s;
+    sigma.reverseInPlace();
+    null_basis = q * svd.matrixV().rowwise().reverse();
+  } else {
+    const Eigen::SparseMatrix<double> normal = c.transpose() * c;
+    largest = std::sqrt(largest_eigenvalue(normal));
+    std::size_t count = 8;
+    for (;;) {
+      const Eigenpairs pairs = smallest_eigenpairs(normal, rigid, count);
+      sigma = pairs.values.cwiseMax(0.0).cwiseSqrt();
+      null_basis = pairs.vectors;
+      if (sigma(sigma.size() - 1) > 1e-6 * largest || count >= 64) break;
+      count *= 2;
+    }
+  }
+  const double line = (n <= 2400 ? mechanism_threshold : 1e-6) * largest;
+  Eigen::Index zeros = 0;
+  while (zeros < sigma.size() && sigma(zeros) <= line) ++zeros;
+  m.internal_mechanisms = static_cast<std::size_t>(zeros);
+  const std::size_t rank = static_cast<std::size_t>(n) - 6 - m.internal_mechanisms;
+  m.self_stress_states = m.constraints - rank;
+  for (Eigen::Index i = 0; i < std::min<Eigen::Index>(sigma.size(), zeros + 6); ++i) {
+    m.singular_values.push_back(largest > 0.0 ? sigma(i) / largest : 0.0);
+  }
+  if (zeros > 0) m.largest_zero = m.singular_values[static_cast<std::size_t>(zeros - 1)];
+  if (zeros < sigma.size()) m.smallest_nonzero = m.singular_values[static_cast<std::size_t>(zeros)];
+  if (velocity) {
+    const Eigen::VectorXd v = without_rigid_motions(velocity->head(n), rigid);
+    const double norm = v.norm();
+    if (norm > 0.0) {
+      m.motion_residual = (c * v).norm() / (largest * norm);
+      m.motion_in_mechanisms = zeros > 0 ? (null_basis.leftCols(zeros).transpose() * v).norm() / norm : 0.0;
+    }
+  }
+  return m;
+}
+
+Mobility mobility(const Design& design, double t) {
+  AssemblyConfiguration c;
+  std::vector<Points> rates;
+  const bool finite = design.assembly.evaluate_rate(t, c, rates);
+  StiffnessOptions options;
+  const BarHingeModel model(design, c, options);
+  std::optional<Eigen::VectorXd> velocity;
+  if (finite) {
+    Points v;
+    model.node_rates(rates, v);
+    velocity = flatten(v);
+  }
+  return mobility(model, velocity);
+}
+
+}  // namespace phedra
