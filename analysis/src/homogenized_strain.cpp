@@ -129,11 +129,18 @@ std::array<std::optional<double>, 3> HomogenizedStrain::stretch(double t) const 
 
 HomogenizedStrain::State HomogenizedStrain::at(double t) const {
   State s;
-  // F's derivative: M is linear in the positions, so dF/dt = M(dx/dt) C^+; dx/dt
-  // by the fourth-order central difference, its stencil inside the interval.
-  const double c = std::clamp(t, std::min(lo_ + 2.0 * h_, 0.5 * (lo_ + hi_)), std::max(hi_ - 2.0 * h_, 0.5 * (lo_ + hi_)));
+  // F's derivative: M is linear in the positions, so dF/dt = M(dx/dt) C^+ with
+  // the exact dx/dt (Assembly::evaluate_rate). At a flexion limit, where it is
+  // infinite, the fourth-order central difference next to it, its stencil inside
+  // the interval (the rate the plots show at the ends).
   Mat3 df = Mat3::Zero();
-  if (h_ > 0.0) {
+  std::vector<Points> rates;
+  if (assembly_.evaluate_rate(t, configuration_, rates)) {
+    AssemblyConfiguration velocity;
+    velocity.members = std::move(rates);
+    df = moment(velocity) * pseudo_inverse_;  // (the reference is centred: M is linear)
+  } else if (h_ > 0.0) {
+    const double c = std::clamp(t, std::min(lo_ + 2.0 * h_, 0.5 * (lo_ + hi_)), std::max(hi_ - 2.0 * h_, 0.5 * (lo_ + hi_)));
     const std::array<std::pair<double, double>, 4> stencil{{{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}};
     for (const auto& [offset, weight] : stencil) df += weight * affine(c + offset * h_);
     df /= 12.0 * h_;

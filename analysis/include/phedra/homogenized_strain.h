@@ -14,10 +14,10 @@
 //   at t* (rotations do not change it). For a periodic array it is the stretch
 //   of the lattice vectors; unlike a bounding-box extent it has no corners
 //   where another vertex becomes the extreme one.
-// - Its rate: d(ln stretch)/dt from the positions' derivative (a fourth-order
-//   central difference of the exact motion, the stencil kept inside the
-//   flexion interval) through the chain rule; Poisson's ratio nu_jk =
-//   -rate_k / rate_j.
+// - Its rate: d(ln stretch)/dt from the positions' exact derivative
+//   (Assembly::evaluate_rate; at a flexion limit, where it is infinite, a
+//   fourth-order central difference next to the limit) through the chain rule;
+//   Poisson's ratio nu_jk = -rate_k / rate_j.
 
 #include "phedra/design.h"
 
@@ -49,7 +49,7 @@ class HomogenizedStrain {
   };
   /// The stretches at t (one evaluation of the motion).
   std::array<std::optional<double>, 3> stretch(double t) const;
-  /// Stretches and their rates at t (t in the flexion interval; five evaluations).
+  /// Stretches and their rates at t (t in the flexion interval).
   State at(double t) const;
   /// The positions of the last evaluation (at(t) ends with t's).
   const AssemblyConfiguration& configuration() const { return configuration_; }
