@@ -24,6 +24,7 @@ int run(const std::vector<std::string>& args, std::ostream& out, std::ostream& e
   add_optimize_command(app, context);
   add_intersections_command(app, context);
   add_metrics_command(app, context);
+  add_mechanics_command(app, context);
   add_outlines_command(app, context);
   add_develop_command(app, context);
   add_generate_command(app, context);

@@ -2,6 +2,7 @@
 //   [--vary GROUPS] [--no-keep-buildable] [--tol REL] [--max-seconds S] [--closest FILE] [--json]
 
 #include "commands.h"
+#include "phedra/report_values.h"
 #include "phedra/buildability.h"
 #include "phedra/design_preset.h"
 #include "phedra/errors.h"
@@ -31,7 +32,6 @@ struct OptimizeCommandOptions {
 
 std::string value_text(const std::optional<double>& v) { return v ? format_human(*v) : std::string("undefined"); }
 
-nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
 nlohmann::json result_json(const OptimizeResult& r, const std::string& written) {
   nlohmann::json targets = nlohmann::json::array();

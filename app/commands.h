@@ -28,5 +28,6 @@ void add_view_command(CLI::App& app, Context& context);
 void add_bench_command(CLI::App& app, Context& context);
 void add_repair_command(CLI::App& app, Context& context);
 void add_optimize_command(CLI::App& app, Context& context);
+void add_mechanics_command(CLI::App& app, Context& context);
 
 }  // namespace phedra::cli

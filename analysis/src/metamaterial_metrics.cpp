@@ -1,4 +1,5 @@
 #include "phedra/metamaterial_metrics.h"
+#include "phedra/report_values.h"
 #include "phedra/plot_axes.h"
 
 #include "phedra/errors.h"
@@ -12,9 +13,8 @@
 #include <sstream>
 
 namespace phedra {
-namespace {
 
-std::array<double, 3> extents(const std::vector<Points>& members, const std::array<Vec3, 3>& d) {
+std::array<double, 3> axis_extents(const std::vector<Points>& members, const std::array<Vec3, 3>& d) {
   std::array<double, 3> out{};
   for (int k = 0; k < 3; ++k) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
@@ -30,6 +30,8 @@ std::array<double, 3> extents(const std::vector<Points>& members, const std::arr
   return out;
 }
 
+namespace {
+
 /// The figures at t; `reference` holds the lengths at t* (the bounding extents then), none for t* itself.
 MetricsSample sample_at(const HomogenizedStrain& strain, const Assembly& a, double t,
                         const std::array<std::optional<double>, 3>* reference) {
@@ -37,7 +39,7 @@ MetricsSample sample_at(const HomogenizedStrain& strain, const Assembly& a, doub
   s.t = t;
   const HomogenizedStrain::State state = strain.at(t);
   const std::vector<Points>& members = strain.configuration().members;
-  s.bounding_extent = extents(members, strain.axes());
+  s.bounding_extent = axis_extents(members, strain.axes());
   s.strain_rate = state.rate;
   for (int k = 0; k < 3; ++k) {
     const std::optional<double> at_star = reference ? (*reference)[k] : std::optional<double>(s.bounding_extent[k]);
@@ -68,7 +70,6 @@ MetricsSample sample_at(const HomogenizedStrain& strain, const Assembly& a, doub
   return s;
 }
 
-nlohmann::json optional_json(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
 
 nlohmann::json sample_json(const MetricsSample& s) {
   nlohmann::json members = nlohmann::json::array();
@@ -84,7 +85,6 @@ nlohmann::json sample_json(const MetricsSample& s) {
                        {"nu_23", optional_json(s.poisson[2])}}}};
 }
 
-std::string csv_number(const std::optional<double>& v) { return v ? format_number(*v) : std::string(); }
 
 }  // namespace
 

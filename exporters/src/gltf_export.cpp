@@ -22,25 +22,6 @@ std::array<double, 3> hsv_to_rgb(double h, double s, double v) {
   return {table[sector][0] + m, table[sector][1] + m, table[sector][2] + m};
 }
 
-/// JSON as a glTF extras value (numbers that are whole stay integers).
-tinygltf::Value to_value(const nlohmann::json& j) {
-  if (j.is_object()) {
-    tinygltf::Value::Object o;
-    for (const auto& [key, value] : j.items()) o[key] = to_value(value);
-    return tinygltf::Value(o);
-  }
-  if (j.is_array()) {
-    tinygltf::Value::Array a;
-    for (const auto& value : j) a.push_back(to_value(value));
-    return tinygltf::Value(a);
-  }
-  if (j.is_boolean()) return tinygltf::Value(j.get<bool>());
-  if (j.is_number_integer()) return tinygltf::Value(static_cast<int>(j.get<long long>()));
-  if (j.is_number()) return tinygltf::Value(j.get<double>());
-  if (j.is_string()) return tinygltf::Value(j.get<std::string>());
-  return tinygltf::Value();
-}
-
 /// extras.phedra.time_map: how time maps to t (time_map.h, docs/formats.md).
 tinygltf::Value time_map_value(const TimeMap& time, double ease_seconds) {
   auto pair = [](double a, double b) { return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(a), tinygltf::Value(b)}); };

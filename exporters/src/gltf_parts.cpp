@@ -4,6 +4,24 @@
 
 namespace phedra::gltf {
 
+tinygltf::Value to_value(const nlohmann::json& j) {
+  if (j.is_object()) {
+    tinygltf::Value::Object o;
+    for (const auto& [key, value] : j.items()) o[key] = to_value(value);
+    return tinygltf::Value(o);
+  }
+  if (j.is_array()) {
+    tinygltf::Value::Array a;
+    for (const auto& value : j) a.push_back(to_value(value));
+    return tinygltf::Value(a);
+  }
+  if (j.is_boolean()) return tinygltf::Value(j.get<bool>());
+  if (j.is_number_integer()) return tinygltf::Value(static_cast<int>(j.get<long long>()));
+  if (j.is_number()) return tinygltf::Value(j.get<double>());
+  if (j.is_string()) return tinygltf::Value(j.get<std::string>());
+  return tinygltf::Value();
+}
+
 float checked(double x) {
   const float f = static_cast<float>(x);
   if (!std::isfinite(f)) throw Error(ExitCode::internal, "refusing to write a non-finite number to glTF");

@@ -56,6 +56,9 @@ class BufferBuilder {
   tinygltf::Model& model_;
 };
 
+/// JSON as a glTF extras value (numbers that are whole stay integers).
+tinygltf::Value to_value(const nlohmann::json& j);
+
 /// x as float32; Error(internal) rather than write a non-finite number.
 float checked(double x);
 

@@ -138,6 +138,7 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
         }
         const bool on02 = d02 < d13;
         const std::size_t a = on02 ? 0 : 1;  // the split v[a] - v[a + 2]
+        p.base = a;
         bar(v[a], v[a + 2]);
         // MERLIN2's order: [P0 P2 P1 P3] or [P1 P3 P0 P2].
         bends.push_back({{v[a], v[a + 2], on02 ? v[1] : v[0], on02 ? v[3] : v[2]}, HingeKind::bend,
@@ -219,6 +220,26 @@ void BarHingeModel::node_rates(const std::vector<Points>& member_rates, Points& 
     const Vec3& a = out[p.corners[p.base]];
     out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
   }
+}
+
+std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
+  std::vector<std::array<std::uint32_t, 3>> out;
+  auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
+    out.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)});
+  };
+  for (const ModelPanel& p : panels_) {
+    const std::vector<std::size_t>& v = p.corners;
+    if (v.size() == 3) {
+      add(v[0], v[1], v[2]);
+    } else if (p.centre) {
+      for (std::size_t k = 0; k < 4; ++k) add(*p.centre, v[k], v[(k + 1) % 4]);
+    } else {
+      const std::size_t a = p.base;
+      add(v[a], v[a + 1], v[a + 2]);
+      add(v[a + 2], v[(a + 3) % 4], v[a]);
+    }
+  }
+  return out;
 }
 
 double BarHingeModel::angle(std::size_t h, const Points& x) const { return hinge_angle(hinge_nodes(hinges_[h], x)); }

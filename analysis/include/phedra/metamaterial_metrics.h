@@ -81,6 +81,10 @@ const std::vector<std::string>& figure_names();
 /// Whether the figure needs the samples over the interval (not t* alone).
 bool figure_needs_interval(const std::string& name);
 
+/// The extent of every member's vertices along each of the axes (max - min of
+/// the projections): at t* the metrics' lengths L_k(t*).
+std::array<double, 3> axis_extents(const std::vector<Points>& members, const std::array<Vec3, 3>& axes);
+
 /// Volume enclosed by a tube member's side panels and its end profiles (0 for an open member).
 double enclosed_volume(const GridTopology& topology, const Points& positions);
 

@@ -84,6 +84,7 @@ struct ModelPanel {
   std::size_t face = 0;                ///< its panel number (face of panel_mesh(design))
   std::vector<std::size_t> corners;    ///< 3 or 4 nodes, in the face's order
   /// n5b8: the centre node; it is corners[base] + ratio (corners[base + 2] - corners[base]).
+  /// n4b5: the panel is split along corners[base] - corners[base + 2].
   std::optional<std::size_t> centre;
   std::size_t base = 0;
   double ratio = 0.0;
@@ -115,6 +116,10 @@ class BarHingeModel {
   void node_positions(const AssemblyConfiguration& c, Points& out) const;
   /// The nodes' rates from the members' rates (Assembly::evaluate_rate).
   void node_rates(const std::vector<Points>& member_rates, Points& out) const;
+
+  /// The model's triangles (node indices): a quad's two (n4b5) or four around
+  /// its centre (n5b8), a triangle panel itself; in panel order.
+  std::vector<std::array<std::uint32_t, 3>> triangles() const;
 
   /// theta of hinge h at the nodes' positions `x`.
   double angle(std::size_t h, const Points& x) const;

@@ -1,0 +1,94 @@
+#pragma once
+// The exact energy landscape of the motion (issue 36, item 4; docs/design.md,
+// "Mechanics"): the piece was made stress-free at the rest state T0, so its fold
+// springs rest at the angles theta(T0); along the exact motion the panels stay
+// rigid and planar, so only the folds store energy:
+//
+//   E(t) = sum over fold hinges of 1/2 L KF (theta(t) - theta(T0))^2,
+//
+// L the hinge's length (constant along the motion), theta kept continuous from
+// T0. dE/dt = sum L KF (theta - theta0) grad(theta) . dX/dt with the exact rate
+// of the motion (not differences of E): the generalized force. Equilibria are
+// its zeros (refined to 1e-12 of the interval), each a minimum or a maximum;
+// two minima make the design bistable, with the barrier between them. The force
+// that holds an extension along axis k is dE/dt over dL_k/dt, L_k the lengths of
+// `phedra metrics`.
+
+#include "phedra/bar_hinge_model.h"
+#include "phedra/homogenized_strain.h"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace phedra {
+
+struct EnergyOptions {
+  double rest_t = 0.0;          ///< T0, in the flexion interval
+  std::size_t samples = 201;    ///< over [t_lambda, t_mu], both limits included (>= 2); T0 is added
+  StiffnessOptions stiffness;   ///< KF (and the panels model, for a material's calibration)
+  MetricsAxes axes = MetricsAxes::structural;
+};
+
+struct EnergySample {
+  double t = 0.0;
+  double energy = 0.0;
+  std::optional<double> rate;                  ///< dE/dt (none at a flexion limit: infinite there)
+  std::array<std::optional<double>, 3> length;  ///< L_k (metrics)
+  std::array<std::optional<double>, 3> force;   ///< dE/dt / dL_k/dt (none where L_k is stationary or undefined)
+};
+
+struct Equilibrium {
+  double t = 0.0;
+  bool minimum = true;  ///< else a maximum
+  double energy = 0.0;
+  bool rest = false;    ///< the rest state T0
+};
+
+struct EnergyLandscape {
+  std::string name;
+  double rest_t = 0.0, t_lambda = 0.0, t_mu = 0.0;
+  std::size_t folds = 0;
+  std::vector<EnergySample> samples;   ///< increasing t, both limits and T0 included
+  std::vector<Equilibrium> equilibria;  ///< increasing t
+  double largest_energy = 0.0;          ///< over the samples
+  bool bistable() const;                ///< two or more minima
+  /// Bistable: the highest energy on the way from the rest state to the nearest
+  /// other minimum (the barrier to snap over), and back from that minimum.
+  std::optional<double> barrier, reverse_barrier;
+  std::array<Vec3, 3> axes;             ///< the metrics' axes (unit, user frame)
+
+  nlohmann::json to_json() const;
+  std::string to_csv() const;
+};
+
+/// The landscape of `design` from the rest state options.rest_t. Throws
+/// InvalidInputError("--rest-t") outside the interval, or for samples < 2.
+EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& options);
+
+/// The energy landscape's evaluation at one t: the fold springs of the model
+/// at the rest state, their angles kept continuous. For tests and optimize.
+class FoldEnergy {
+ public:
+  FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options);
+  /// E at t, the angles continuous from `near` (the angles at a t close by; empty: the rest angles).
+  double energy(double t, std::vector<double>& angles, const std::vector<double>& near = {}) const;
+  /// E and dE/dt at t (dE/dt none at a flexion limit).
+  std::pair<double, std::optional<double>> energy_and_rate(double t, std::vector<double>& angles,
+                                                           const std::vector<double>& near = {}) const;
+  const std::vector<double>& rest_angles() const { return rest_angles_; }
+  const BarHingeModel& model() const { return model_; }
+
+ private:
+  void angles_at(const Points& x, std::vector<double>& angles, const std::vector<double>& near) const;
+  const Design& design_;
+  BarHingeModel model_;
+  std::vector<double> rest_angles_;
+  mutable AssemblyConfiguration configuration_;
+  mutable Points nodes_;
+};
+
+}  // namespace phedra
