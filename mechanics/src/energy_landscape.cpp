@@ -138,11 +138,18 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
 
   // Equilibria: the rest state, and every change of sign of dE/dt between samples.
   const double resolution = 1e-12 * (hi - lo);
+  // At a flexion limit dE/dt is infinite, at the rest state zero: their signs
+  // are the ones just beside them, towards the other end of the pair.
+  const double step = 1e-9 * (hi - lo);
+  auto beside = [&](std::size_t i, double towards) {
+    const bool moved = i == rest || !points[i].rate;
+    return moved ? carried(fold, points[i], points[i].t + (towards > points[i].t ? step : -step)) : points[i];
+  };
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (i == rest) out.equilibria.push_back({options.rest_t, true, points[i].energy, true});
-    const Point& left = points[i];
-    const Point& right = points[i + 1];
-    if (!left.rate || !right.rate || i + 1 == rest || i == rest) continue;
+    const Point left = beside(i, points[i + 1].t);
+    const Point right = beside(i + 1, points[i].t);
+    if (!left.rate || !right.rate) continue;
     const bool rises = *left.rate < 0.0 && *right.rate > 0.0, falls = *left.rate > 0.0 && *right.rate < 0.0;
     if (!rises && !falls) {
       if (*right.rate == 0.0 && i + 2 < points.size() && points[i + 2].rate) {
