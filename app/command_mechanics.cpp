@@ -46,7 +46,7 @@ StiffnessOptions stiffness_options(const MechanicsCommandOptions& o) {
   if (!o.material.empty()) {
     if (o.material.size() != 2) {
       throw InvalidInputError("--material", "give E,nu (Young's modulus and Poisson's ratio), got " +
-                                                std::to_string(o.material.size()) + " numbers");
+                                                std::to_string(o.material.size()) + (o.material.size() == 1 ? " number" : " numbers"));
     }
     if (!o.thickness) throw InvalidInputError("--material", "needs the plate thickness: --thickness T (model units)");
     s.material = Material{o.material[0], o.material[1], *o.thickness, o.length_scale};
@@ -245,8 +245,21 @@ void add_mechanics_command(CLI::App& app, Context& context) {
     const StiffnessOptions stiffness = stiffness_options(*o);
     const Design design = load(context, o->preset);
     const Assembly& a = design.assembly;
-    const double t = o->t ? *o->t : o->fraction ? a.t_at_fraction(*o->fraction) : a.t_star();
-    if (!a.flexion_interval().contains(t)) throw OutOfIntervalError(t, a.flexion_interval().lower.t, a.flexion_interval().upper.t);
+    const double lo = a.flexion_interval().lower.t, hi = a.flexion_interval().upper.t;
+    auto at_fraction = [&](double f, const std::string& option) {
+      if (!(f >= 0.0 && f <= 1.0)) {
+        throw InvalidInputError(option, "must be in [0, 1] (0: t_lambda, 1: t_mu), got " + format_number(f));
+      }
+      return a.t_at_fraction(f);
+    };
+    auto inside = [&](double value, const std::string& option, const std::string& what) {
+      if (!(value >= lo && value <= hi)) {
+        throw InvalidInputError(option, what + " t = " + format_number(value) + " is outside the flexion interval [" +
+                                            format_number(lo) + ", " + format_number(hi) + "]");
+      }
+      return value;
+    };
+    const double t = o->t ? inside(*o->t, "--t", "the configuration") : o->fraction ? at_fraction(*o->fraction, "--fraction") : a.t_star();
 
     AssemblyConfiguration configuration;
     std::vector<Points> rates;
@@ -265,7 +278,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
     std::optional<EnergyLandscape> landscape;
     if (o->energy) {
       EnergyOptions e;
-      e.rest_t = o->rest_t ? *o->rest_t : a.t_at_fraction(*o->rest_fraction);
+      e.rest_t = o->rest_t ? inside(*o->rest_t, "--rest-t", "the rest state") : at_fraction(*o->rest_fraction, "--rest-fraction");
       e.samples = o->samples;
       e.stiffness = stiffness;
       e.axes = parse_metrics_axes(o->axes);
@@ -300,6 +313,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       } else if (ext == ".glb" || ext == ".gltf") {
         nlohmann::json extras = {{"name", a.name()},
                                  {"t", t},
+                                 {"model_size", a.model_size()},
                                  {"panels", to_string(stiffness.panels)},
                                  {"eigenvalues", document["eigenvalues"]},
                                  {"motion_alignment", document["motion_alignment"]},

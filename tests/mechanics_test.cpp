@@ -8,13 +8,17 @@
 #include "phedra/errors.h"
 #include "phedra/hinge_angle.h"
 #include "phedra/stiffness_modes.h"
+#include "phedra/energy_landscape.h"
+#include "support/cli_run.h"
 
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
 
 #include <filesystem>
+#include <map>
 #include <numbers>
+#include <set>
 
 using namespace phedra;
 
@@ -146,3 +150,184 @@ TEST_CASE("every shipped preset: six rigid-body modes, and with stiff panels the
   CHECK(refused == 3);  // the anti-parallelogram edge pair (16 bow-ties), at each fraction
 }
 
+
+TEST_CASE("the softer panels' alignment: a second hinge mode mixes in, the motion in the span of two", "[mechanics]") {
+  // The issue's figures: KB / KF = 10 (the defaults) on the parallelogram tube and grid-3x3.
+  for (const char* name : {"parallelogram-tube.json", "grid-3x3.json"}) {
+    const Design design = load_design(std::filesystem::path(test::presets) / name);
+    for (double f : {0.25, 0.5, 0.75}) {
+      INFO(name << " at " << f);
+      const ModeAnalysis a = analyze_modes(design, design.assembly.t_at_fraction(f), StiffnessOptions{}, 2);
+      CHECK(*a.motion_alignment > 0.7);
+      CHECK(*a.motion_alignment < 0.97);
+      CHECK(a.motion_in_span[1] >= 0.9999);
+    }
+  }
+}
+
+TEST_CASE("the model's counts and rules: triangles, shared walls, T-junctions, n4b5 diagonals", "[mechanics]") {
+  // The default preset has two welded quads (triangle panels); grid-3x3's interior vertex lines
+  // are shared by four walls: 4 * 3 / 2 = 6 fold hinges there.
+  const Design open = load_design(std::filesystem::path(test::presets) / "default.json");
+  const BarHingeModel m(open, open.assembly.evaluate(open.assembly.t_star()), StiffnessOptions{});
+  CHECK(m.triangle_panels() == 2);
+  CHECK(m.node_count() == m.corner_node_count() + m.panels().size() - 2);  // a centre a quad
+  CHECK(m.bend_count() == 4 * (m.panels().size() - 2));
+  const Design grid = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
+  StiffnessOptions n4b5;
+  n4b5.panels = PanelModel::n4b5;
+  const BarHingeModel g(grid, grid.assembly.evaluate(grid.assembly.t_star()), n4b5);
+  std::map<std::pair<std::size_t, std::size_t>, int> per_edge;
+  for (std::size_t h = 0; h < g.fold_count(); ++h) {
+    const Hinge& hinge = g.hinges()[h];
+    ++per_edge[std::minmax(hinge.nodes[0], hinge.nodes[1])];
+    CHECK(hinge.panels[0] < hinge.panels[1]);
+  }
+  std::map<int, int> histogram;
+  for (const auto& [edge, count] : per_edge) ++histogram[count];
+  CHECK(histogram.count(6) == 1);  // edges of four panels
+  CHECK(histogram[6] > 0);
+  CHECK(g.bend_count() == g.panels().size());  // one diagonal a quad
+  CHECK(g.bars().size() == per_edge.size() + g.bend_count() +
+                               [&] {  // boundary edges (one panel)
+                                 std::set<std::pair<std::size_t, std::size_t>> all;
+                                 for (const ModelPanel& p : g.panels())
+                                   for (std::size_t k = 0; k < p.corners.size(); ++k)
+                                     all.insert(std::minmax(p.corners[k], p.corners[(k + 1) % p.corners.size()]));
+                                 return all.size() - per_edge.size();
+                               }());
+  // Every hinge of a flat-at-rest panel (bending) is at pi; every fold angle in [0, 2 pi).
+  for (std::size_t h = 0; h < g.hinges().size(); ++h) {
+    const double theta = g.angle(h, g.positions());
+    if (g.hinges()[h].kind == HingeKind::bend) CHECK(std::abs(theta - pi) < 1e-9);
+    CHECK(theta >= 0.0);
+    CHECK(theta < 2 * pi);
+  }
+}
+
+TEST_CASE("the exact motion's energy equals the bar-and-hinge energy of the same positions", "[mechanics]") {
+  // Along the exact motion bars keep their lengths and bending hinges stay flat: the
+  // model's whole energy (bars, bends, folds at rest at T0) is the fold energy.
+  const Design design = load_design(std::filesystem::path(test::presets) / "parallelogram-tube.json");
+  const double rest = design.assembly.t_at_fraction(0.3);
+  const FoldEnergy fold(design, rest, StiffnessOptions{});
+  const BarHingeModel& m = fold.model();
+  std::vector<double> rest_angles;
+  for (std::size_t h = 0; h < m.hinges().size(); ++h) rest_angles.push_back(m.angle(h, m.positions()));
+  for (double f : {0.05, 0.5, 0.9}) {
+    const double t = design.assembly.t_at_fraction(f);
+    std::vector<double> angles;
+    const double e = fold.energy(t, angles);
+    Points x;
+    m.node_positions(design.assembly.evaluate(t), x);
+    double total = 0.0;
+    for (const Bar& b : m.bars()) {
+      const double stretch = (x[b.nodes[1]] - x[b.nodes[0]]).norm() - b.length;
+      total += 0.5 * b.stiffness / b.length * stretch * stretch;
+    }
+    for (std::size_t h = 0; h < m.hinges().size(); ++h) {
+      const Hinge& hinge = m.hinges()[h];
+      const double d = continuous_angle(m.angle(h, x), rest_angles[h]) - rest_angles[h];
+      total += 0.5 * hinge.stiffness * hinge.length * d * d;
+    }
+    CHECK(std::abs(total - e) <= 1e-12 * std::max(1.0, e));
+    CHECK(e > 0.0);
+  }
+}
+
+TEST_CASE("a bistable design: two minima and the barrier between them", "[mechanics]") {
+  const Design design = load_design(std::filesystem::path(test::data) / "bistable.json");
+  EnergyOptions o;
+  o.rest_t = design.assembly.t_at_fraction(0.95);
+  o.stiffness.panels = PanelModel::n4b5;
+  const EnergyLandscape e = energy_landscape(design, o);
+  REQUIRE(e.bistable());
+  REQUIRE(e.equilibria.size() == 3);
+  CHECK(e.equilibria[0].minimum);
+  CHECK_FALSE(e.equilibria[1].minimum);
+  CHECK(e.equilibria[2].rest);
+  CHECK(*e.barrier == Approx(e.equilibria[1].energy));
+  CHECK(*e.reverse_barrier == Approx(e.equilibria[1].energy - e.equilibria[0].energy));
+  CHECK(*e.reverse_barrier > 0.0);
+  // The same equilibria from more samples (to the refinement's accuracy).
+  o.samples = 1001;
+  const EnergyLandscape fine = energy_landscape(design, o);
+  REQUIRE(fine.equilibria.size() == 3);
+  for (std::size_t k = 0; k < 3; ++k) CHECK(std::abs(fine.equilibria[k].t - e.equilibria[k].t) <= 1e-10);
+  // A monostable one: the shipped default.
+  const Design open = load_design(std::filesystem::path(test::presets) / "default.json");
+  o.rest_t = open.assembly.t_at_fraction(0.4);
+  o.samples = 101;
+  o.stiffness = {};
+  const EnergyLandscape single = energy_landscape(open, o);
+  CHECK_FALSE(single.bistable());
+  CHECK(single.equilibria.size() == 1);
+  CHECK_FALSE(single.barrier);
+  // E >= 0, zero at the rest state, dE/dt none only at the limits.
+  for (const EnergySample& s : single.samples) {
+    CHECK(s.energy >= 0.0);
+    CHECK(s.rate.has_value() == (s.t != open.assembly.flexion_interval().lower.t && s.t != open.assembly.flexion_interval().upper.t));
+  }
+}
+
+TEST_CASE("phedra mechanics: JSON fields, files, and every bad option a clear error with exit 2", "[mechanics][cli]") {
+  using test::phedra_cli;
+  const std::string preset = test::presets + "/parallelogram-tube.json";
+  test::TempDir dir("mechanics");
+  const test::Run run = phedra_cli({"mechanics", preset, "--fraction", "0.4", "--json"});
+  REQUIRE(run.code == 0);
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  for (const char* key : {"t", "panels", "nodes", "bars", "hinges", "rigid_body_modes", "eigenvalues", "motion_alignment",
+                          "gap", "motion_stiffness", "mobility"}) {
+    CHECK(j.contains(key));
+  }
+  CHECK(j["rigid_body_modes"] == 6);
+  CHECK(j["eigenvalues"].size() == 6);
+  CHECK(j["mobility"]["internal_mechanisms"] == 1);
+  const test::Run files = phedra_cli({"mechanics", preset, "--over-interval", "12", "-o", dir / "m.csv", "-o", dir / "m.svg",
+                                      "-o", dir / "m.png", "-o", dir / "m.json"});
+  REQUIRE(files.code == 0);
+  CHECK(std::filesystem::file_size(dir / "m.png") > 10000);
+  CHECK(test::read_json(dir / "m.json")["over_interval"]["configurations"].size() == 12);
+  const test::Run energy = phedra_cli({"mechanics", preset, "--energy", "--rest-fraction", "0.5", "--samples", "21", "-o",
+                                       dir / "e.csv", "-o", dir / "e.json", "-o", dir / "modes.glb"});
+  REQUIRE(energy.code == 0);
+  const nlohmann::json e = test::read_json(dir / "e.json");
+  CHECK(e["energy"].size() == 21);  // the rest state is a sample already
+  CHECK(e["equilibria"][0]["kind"] == "minimum");
+  CHECK(std::filesystem::file_size(dir / "modes.glb") > 1000);
+  struct Bad {
+    std::vector<std::string> args;
+    const char* says;
+  };
+  const std::vector<Bad> bad = {
+      {{"--bar", "-1"}, "--bar"},
+      {{"--fold", "0"}, "--fold"},
+      {{"--bend", "nan"}, "--bend"},
+      {{"--panels", "n6b9"}, "--panels"},
+      {{"--modes", "0"}, "--modes"},
+      {{"--modes", "100000"}, "--modes: must be between 1 and"},
+      {{"--energy"}, "--rest-t"},
+      {{"--energy", "--rest-t", "99"}, "outside the flexion interval"},
+      {{"--energy", "--rest-fraction", "1.5"}, "fraction"},
+      {{"--rest-t", "1"}, "only with --energy"},
+      {{"--t", "99"}, "outside"},
+      {{"--material", "1000"}, "--material"},
+      {{"--material", "1000,0.3"}, "--thickness"},
+      {{"--material", "1000,0.6", "--thickness", "0.1"}, "Poisson"},
+      {{"--material", "1000,0.3", "--thickness", "0.1", "--panels", "n4b5"}, "n5b8 panels only"},
+      {{"--thickness", "0.1"}, "only with --material"},
+      {{"--over-interval", "1"}, "at least 2"},
+      {{"-o", "x.csv"}, "--over-interval or --energy"},
+      {{"-o", "x.stl"}, "unknown format"},
+  };
+  for (const Bad& b : bad) {
+    std::vector<std::string> args = {"mechanics", preset};
+    args.insert(args.end(), b.args.begin(), b.args.end());
+    const test::Run r = phedra_cli(args);
+    INFO(args.back());
+    CHECK(r.code == 2);
+    CHECK_THAT(r.err, Catch::Matchers::Contains(b.says));
+  }
+  CHECK_FALSE(std::filesystem::exists("x.csv"));
+}

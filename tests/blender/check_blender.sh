@@ -3,7 +3,8 @@
 # default export, the node representation of two, and a 9900-panel array
 # (tests/data/grid-10x10.json) are imported and played: every keyframe and every
 # whole frame (24 fps) within the file's tolerance of `phedra sample`, the
-# scene metadata and the shape keys named by t (tests/blender/check_gltf.py).
+# scene metadata and the shape keys named by t (tests/blender/check_gltf.py);
+# and the modes of `phedra mechanics -o` (tests/blender/check_modes.py).
 # The import and frame-change times are printed; bench/blender.sh holds them to
 # the targets.
 # usage: tests/blender/check_blender.sh PHEDRA_BINARY
@@ -39,5 +40,10 @@ for name in default grid-3x3; do
 done
 "$phedra" generate "$top/tests/data/grid-10x10.json" -o "$out/grid-10x10.glb" --quiet >/dev/null 2>&1
 check "$top/tests/data/grid-10x10.json" "$out/grid-10x10.glb"
+# The stiffness's modes (phedra mechanics -o): shape keys by name, played a field at a time.
+"$phedra" mechanics "$top/presets/parallelogram-tube.json" --fraction 0.4 --modes 4 -o "$out/modes.glb" >/dev/null 2>&1
+line="$(blender -b --factory-startup --python "$top/tests/blender/check_modes.py" -- "$out/modes.glb" 2>&1 | grep '^phedra-blender-modes: ' || true)"
+echo "${line:-modes.glb: Blender did not report}"
+if echo "$line" | grep -q '"failures": \[\]'; then passed=$((passed + 1)); else status=1; fi
 if [ "$status" -eq 0 ]; then echo "$passed passed, 0 failed"; else echo "Blender checks failed"; fi
 exit "$status"

@@ -3,7 +3,8 @@
 # Khronos glTF-Validator (0 errors, 0 warnings), three.js (GLTFLoader +
 # AnimationMixer at every keyframe and halfway between keyframes against
 # `phedra sample`), in both representations (morph targets, the default, and
-# --nodes), and the npm `fold` package (FOLD frames).
+# --nodes), the npm `fold` package (FOLD frames), and the modes of `phedra
+# mechanics -o` (check_modes_three.mjs).
 # usage: tests/js/check_exports.sh PHEDRA_BINARY
 set -euo pipefail
 phedra="$1"
@@ -37,6 +38,12 @@ files+=("$out/grid-3x3-nodes-ping.gltf" "$out/static-nodes.glb")
 "$phedra" generate "$top/presets/default.json" -o "$out/cycle.glb" --cycle --nodes --quiet >/dev/null
 "$phedra" generate "$top/presets/anti-parallelogram-tube.json" -o "$out/cycle-morph.gltf" --cycle --quiet >/dev/null
 files+=("$out/grid-3x3.gltf" "$out/static.glb" "$out/cycle.glb" "$out/cycle-morph.gltf")
+# The stiffness's modes (phedra mechanics -o): played in three.js, validated below.
+"$phedra" mechanics "$top/presets/parallelogram-tube.json" --fraction 0.4 --modes 4 -o "$out/modes.glb" >/dev/null
+"$phedra" mechanics "$top/presets/grid-3x3.json" --panels n4b5 --modes 3 -o "$out/grid-modes.glb" -o "$out/grid-modes.gltf" >/dev/null
+node "$top/tests/js/check_modes_three.mjs" "$phedra" "$top/presets/parallelogram-tube.json" "$out/modes.glb" || status=1
+node "$top/tests/js/check_modes_three.mjs" "$phedra" "$top/presets/grid-3x3.json" "$out/grid-modes.glb" || status=1
+files+=("$out/modes.glb" "$out/grid-modes.glb" "$out/grid-modes.gltf")
 node "$top/tests/js/validate_gltf.mjs" "${files[@]}" || status=1
 if [ "$status" -eq 0 ]; then echo "$(( ${#files[@]} + ${#folds[@]} )) passed, 0 failed"; else echo "export client checks failed"; fi
 exit "$status"

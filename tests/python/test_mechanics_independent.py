@@ -138,3 +138,51 @@ def test_energy_landscape_and_equilibria_agree_with_independent_code():
     for e in others:
         before, after = rate(e["t"] - 1e-8 * width), rate(e["t"] + 1e-8 * width)
         assert (before < 0 < after) if e["kind"] == "minimum" else (before > 0 > after)
+
+
+def read_glb(path):
+    """The JSON and binary chunks of a .glb."""
+    import struct
+
+    data = open(path, "rb").read()
+    length = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + length])
+    start = 20 + length + 8
+    return doc, data[start:]
+
+
+def accessor(doc, blob, index):
+    a = doc["accessors"][index]
+    view = doc["bufferViews"][a["bufferView"]]
+    width = {"SCALAR": 1, "VEC3": 3}[a["type"]]
+    dtype = {5126: np.float32, 5125: np.uint32}[a["componentType"]]
+    offset = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+    return np.frombuffer(blob, dtype=dtype, count=a["count"] * width, offset=offset).reshape(a["count"], width)
+
+
+def test_the_modes_glb_holds_eigenvectors_of_the_independent_stiffness():
+    preset = os.path.join(ROOT, "presets", "parallelogram-tube.json")
+    with tempfile.TemporaryDirectory() as tmp:
+        glb = os.path.join(tmp, "modes.glb")
+        mine = phedra_json("mechanics", preset, "--fraction", "0.4", "--modes", "3", "-o", glb)
+        doc, blob = read_glb(glb)
+    primitive = doc["meshes"][0]["primitives"][0]
+    to_preset = lambda p: np.column_stack([p[:, 0], -p[:, 2], p[:, 1]])  # glTF (x, y, z) = preset (x, z, -y)
+    rest = to_preset(accessor(doc, blob, primitive["attributes"]["POSITION"]).astype(float))
+    frames, faces, reference = ref.positions(PHEDRA, preset, [mine["t"]])
+    model = ref.Model(frames[0], faces, ref.bounding_diagonal(reference), "n5b8")
+    # Each mesh vertex is a model node (float32 positions).
+    nearest = [int(np.argmin(np.linalg.norm(model.x - p, axis=1))) for p in rest]
+    assert sorted(nearest) == list(range(len(model.x)))
+    assert np.max(np.linalg.norm(model.x[nearest] - rest, axis=1)) <= 1e-6 * ref.bounding_diagonal(reference)
+    K = model.stiffness()
+    vectors = []
+    for k, value in enumerate(mine["eigenvalues"][:3]):
+        d = to_preset(accessor(doc, blob, primitive["targets"][2 * k]["POSITION"]).astype(float))
+        phi = np.zeros_like(model.x)
+        phi[nearest] = d
+        phi = phi.ravel() / np.linalg.norm(phi)
+        assert abs(phi @ K @ phi - value) <= 1e-5 * value
+        vectors.append(phi)
+    gram = np.array(vectors) @ np.array(vectors).T
+    assert np.max(np.abs(gram - np.eye(3))) <= 1e-5
