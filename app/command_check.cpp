@@ -4,6 +4,7 @@
 #include "phedra/assembly_check.h"
 #include "phedra/buildability.h"
 #include "phedra/errors.h"
+#include "phedra/mobility.h"
 #include "support.h"
 #include "phedra/check_report.h"
 #include "phedra/thick_plates.h"
@@ -72,11 +73,14 @@ void add_check_command(CLI::App& app, Context& context) {
       thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
+    // The rigid-panel model's mobility at t*: one internal mechanism, the motion (informative).
+    const Mobility mobile = mobility(loaded.design, loaded.design.assembly.t_star());
     if (options->json) {
       nlohmann::json j = report_json(report);
       j["geometry_passed"] = report.passed();
       j["passed"] = report.passed() && buildable && thick_fits;
       if (buildability) j["buildability"] = buildability->to_json();
+      j["mobility"] = mobile.to_json();
       if (thick) {
         j["thick"] = thick->to_json();
         j["thick_interval"] = j["thick"]["thick_interval"];
@@ -95,6 +99,7 @@ void add_check_command(CLI::App& app, Context& context) {
                        "flexion interval (below; --geometry-only checks the geometry alone)\n";
       }
       context.out << report;
+      context.out << mobile;
       if (buildability) context.out << *buildability;
       if (thick) {
         if (!thick_fits) context.out << "FAIL: the plates " << format_human(thick->thickness) << " thick collide at t*\n";

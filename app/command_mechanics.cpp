@@ -65,19 +65,6 @@ nlohmann::json stiffness_json(const StiffnessOptions& s) {
   return {{"bar_EA", s.bar}, {"fold_KF", s.fold_value()}, {"bend_KB", s.bend}};
 }
 
-nlohmann::json mobility_json(const Mobility& m) {
-  return {{"corner_nodes", m.nodes},
-          {"constraints", m.constraints},
-          {"internal_mechanisms", m.internal_mechanisms},
-          {"self_stress_states", m.self_stress_states},
-          {"singular_values", m.singular_values},
-          {"largest_zero", m.largest_zero},
-          {"smallest_nonzero", m.smallest_nonzero},
-          {"clear", m.clear()},
-          {"motion_in_mechanisms", optional_json(m.motion_in_mechanisms)},
-          {"motion_residual", optional_json(m.motion_residual)}};
-}
-
 std::string list(const std::vector<double>& values, std::size_t at_most = 8) {
   std::string out;
   for (std::size_t k = 0; k < values.size() && k < at_most; ++k) out += (k ? "  " : "") + format_human(values[k]);
@@ -114,14 +101,6 @@ void print_modes(std::ostream& out, const ModeAnalysis& a, const StiffnessOption
   } else {
     out << "  the exact motion dX/dt: infinite at a flexion limit (no alignment, no motion stiffness)\n";
   }
-}
-
-void print_mobility(std::ostream& out, const Mobility& m) {
-  out << "  mobility (rigid panels): " << m.internal_mechanisms << " internal mechanism"
-      << (m.internal_mechanisms == 1 ? "" : "s") << ", " << m.self_stress_states << " states of self-stress";
-  if (m.motion_in_mechanisms) out << "; the motion lies in the mechanisms to " << format_human(*m.motion_in_mechanisms);
-  out << "\n    singular values (relative): zero up to " << format_human(m.largest_zero) << ", then "
-      << format_human(m.smallest_nonzero) << (m.clear() ? "" : " (no clear gap: the count is uncertain)") << "\n";
 }
 
 void print_energy(std::ostream& out, const EnergyLandscape& e) {
@@ -272,7 +251,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       velocity = flatten(v);
     }
     const ModeAnalysis analysis = analyze_modes(model, velocity, o->modes);
-    const Mobility mobile = mobility(model, velocity);
+    const Mobility mobile = mobility(model.mesh(), velocity);
     std::optional<ModesOverInterval> over;
     if (o->over_interval) over = modes_over_interval(design, *o->over_interval, stiffness, o->modes);
     std::optional<EnergyLandscape> landscape;
@@ -301,7 +280,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
         {"motion_in_span", analysis.motion_in_span},
         {"gap", optional_json(analysis.gap)},
         {"motion_stiffness", optional_json(analysis.motion_stiffness)},
-        {"mobility", mobility_json(mobile)}};
+        {"mobility", mobile.to_json()}};
     if (over) document["over_interval"] = over->to_json();
     if (landscape) document.update(landscape->to_json());
 
@@ -334,7 +313,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
     context.out << "mechanics: " << a.name() << " (" << design.kind << "), " << to_string(stiffness.panels) << " at t = "
                 << format_human(t) << (t == a.t_star() ? " (t*)" : "") << "\n";
     print_modes(context.out, analysis, stiffness, model);
-    print_mobility(context.out, mobile);
+    context.out << mobile;
     if (over) print_over_interval(context.out, *over);
     if (landscape) print_energy(context.out, *landscape);
     for (const std::string& path : o->outputs) context.out << "wrote " << path << '\n';

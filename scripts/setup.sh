@@ -15,7 +15,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   zlib1g-dev libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core libspectra-dev
+  catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core libspectra-dev libsuitesparse-dev libopenblas0-serial
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
   blender python3-numpy admesh

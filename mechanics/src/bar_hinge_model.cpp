@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 
 namespace phedra {
 
@@ -58,28 +59,23 @@ std::string panel_name(std::size_t face) { return "panel " + std::to_string(face
 
 }  // namespace
 
-BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& at, const StiffnessOptions& options)
-    : t_(at.t), panels_model_(options.panels) {
-  options.validate();
+ModelMesh model_mesh(const Design& design, const AssemblyConfiguration& at) {
+  ModelMesh out;
+  out.t = at.t;
   const AssemblyMesh mesh = panel_mesh(design);
   const Points vertices = mesh.positions(at);
-  const double size = design.assembly.model_size();
-  const std::vector<std::size_t> same = coincident_points({vertices}, 1e-9 * size);
-
-  // Corner nodes in the order the panels first use them.
-  mesh_vertex_node_.assign(vertices.size(), SIZE_MAX);
+  const std::vector<std::size_t> same = coincident_points({vertices}, 1e-9 * design.assembly.model_size());
   std::vector<std::size_t> node_of_representative(vertices.size(), SIZE_MAX);
   auto node = [&](std::size_t v) {
     std::size_t& n = node_of_representative[same[v]];
     if (n == SIZE_MAX) {
-      n = node_vertex_.size();
-      node_vertex_.push_back(mesh.vertices[same[v]]);
-      positions_.push_back(vertices[same[v]]);
+      n = out.node_vertex.size();
+      out.node_vertex.push_back(mesh.vertices[same[v]]);
+      out.positions.push_back(vertices[same[v]]);
     }
-    mesh_vertex_node_[v] = n;
     return n;
   };
-  std::map<std::vector<std::size_t>, std::size_t> seen;  // sorted node set -> panel
+  std::set<std::vector<std::size_t>> seen;  // sorted node sets
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     std::array<std::size_t, 4> c{};
     for (int k = 0; k < 4; ++k) c[k] = node(mesh.faces[f][k]);
@@ -96,16 +92,28 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
                                                  " (not a quad with two adjacent corners merged): the bar-and-hinge "
                                                  "model has no panel for it");
     }
-    if (!seen.emplace(key, f).second) {
-      ++dropped_;  // a wall two cells share, modelled once
+    if (!seen.insert(key).second) {
+      ++out.dropped_faces;  // a wall two cells share, modelled once
       continue;
     }
-    ModelPanel p;
-    p.face = f;
-    p.corners = corners;
-    triangles_ += corners.size() == 3;
-    panels_.push_back(p);
+    out.triangle_panels += corners.size() == 3;
+    out.panels.push_back({f, corners, std::nullopt, 0, 0.0});
   }
+  return out;
+}
+
+void ModelMesh::nodes(const std::vector<Points>& members, Points& out) const {
+  out.resize(node_vertex.size());
+  for (std::size_t n = 0; n < node_vertex.size(); ++n) out[n] = members[node_vertex[n].member][node_vertex[n].vertex];
+}
+
+BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& at, const StiffnessOptions& options)
+    : panels_model_(options.panels) {
+  options.validate();
+  mesh_ = model_mesh(design, at);
+  positions_ = mesh_.positions;
+  const double size = design.assembly.model_size();
+  std::vector<ModelPanel>& panels = mesh_.panels;
 
   // Bars on the panels' edges, their uses, diagonals or spokes and bending hinges.
   std::map<std::pair<std::size_t, std::size_t>, std::size_t> bar_of;
@@ -120,8 +128,8 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
     return it->second;
   };
   std::vector<Hinge> bends;
-  for (std::size_t pi = 0; pi < panels_.size(); ++pi) {
-    ModelPanel& p = panels_[pi];
+  for (std::size_t pi = 0; pi < panels.size(); ++pi) {
+    ModelPanel& p = panels[pi];
     const std::vector<std::size_t>& v = p.corners;
     const std::size_t count = v.size();
     std::vector<std::size_t> wing(count);  // the wing of edge k (v[k] -> v[k+1])
@@ -194,32 +202,31 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
     const double axis = (x.k - x.j).norm();
     const double wings = std::min((x.i - x.j).cross(x.k - x.j).norm(), (x.k - x.j).cross(x.k - x.l).norm());
     if (!(wings > 1e-12 * axis * size)) {
-      throw InvalidInputError(panel_name(panels_[h.panels[0]].face),
+      throw InvalidInputError(panel_name(panels[h.panels[0]].face),
                               "a triangle of the model at t = " + format_number(at.t) +
                                   " has no area (a wing on its hinge's axis): the hinge's angle is undefined");
     }
   }
-  if (options.material) calibrate_from_material(*options.material, panels_, positions_, bars_, hinges_);
+  if (options.material) calibrate_from_material(*options.material, panels, positions_, bars_, hinges_);
+}
+
+void BarHingeModel::place_centres(Points& out) const {
+  out.resize(positions_.size());
+  for (const ModelPanel& p : mesh_.panels) {
+    if (!p.centre) continue;
+    const Vec3& a = out[p.corners[p.base]];
+    out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
+  }
 }
 
 void BarHingeModel::node_positions(const AssemblyConfiguration& c, Points& out) const {
-  out.resize(positions_.size());
-  for (std::size_t n = 0; n < node_vertex_.size(); ++n) out[n] = c.members[node_vertex_[n].member][node_vertex_[n].vertex];
-  for (const ModelPanel& p : panels_) {
-    if (!p.centre) continue;
-    const Vec3& a = out[p.corners[p.base]];
-    out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
-  }
+  mesh_.nodes(c.members, out);
+  place_centres(out);
 }
 
 void BarHingeModel::node_rates(const std::vector<Points>& member_rates, Points& out) const {
-  out.resize(positions_.size());
-  for (std::size_t n = 0; n < node_vertex_.size(); ++n) out[n] = member_rates[node_vertex_[n].member][node_vertex_[n].vertex];
-  for (const ModelPanel& p : panels_) {
-    if (!p.centre) continue;
-    const Vec3& a = out[p.corners[p.base]];
-    out[*p.centre] = a + p.ratio * (out[p.corners[p.base + 2]] - a);
-  }
+  mesh_.nodes(member_rates, out);
+  place_centres(out);
 }
 
 std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
@@ -227,7 +234,7 @@ std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
   auto add = [&](std::size_t a, std::size_t b, std::size_t c) {
     out.push_back({static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(c)});
   };
-  for (const ModelPanel& p : panels_) {
+  for (const ModelPanel& p : mesh_.panels) {
     const std::vector<std::size_t>& v = p.corners;
     if (v.size() == 3) {
       add(v[0], v[1], v[2]);

@@ -1,6 +1,8 @@
 #include "phedra/mobility.h"
 
 #include "phedra/stiffness_modes.h"
+#include "phedra/number_format.h"
+#include "phedra/report_values.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
@@ -8,14 +10,15 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <ostream>
 
 namespace phedra {
 namespace {
 
 /// The rows of C over the corner nodes: edges and shorter diagonals as bars
 /// (unit direction), bending hinges across the diagonals (gradient times length).
-Eigen::SparseMatrix<double> compatibility(const BarHingeModel& model) {
-  const Points& x = model.positions();
+Eigen::SparseMatrix<double> compatibility(const ModelMesh& mesh) {
+  const Points& x = mesh.positions;
   std::vector<Eigen::Triplet<double>> entries;
   std::map<std::pair<std::size_t, std::size_t>, bool> bars;
   Eigen::Index row = 0;
@@ -28,7 +31,7 @@ Eigen::SparseMatrix<double> compatibility(const BarHingeModel& model) {
     }
     ++row;
   };
-  for (const ModelPanel& p : model.panels()) {
+  for (const ModelPanel& p : mesh.panels) {
     const std::vector<std::size_t>& v = p.corners;
     for (std::size_t k = 0; k < v.size(); ++k) bar(v[k], v[(k + 1) % v.size()]);
     if (v.size() == 3) continue;
@@ -43,18 +46,18 @@ Eigen::SparseMatrix<double> compatibility(const BarHingeModel& model) {
     }
     ++row;
   }
-  Eigen::SparseMatrix<double> c(row, 3 * static_cast<Eigen::Index>(model.corner_node_count()));
+  Eigen::SparseMatrix<double> c(row, 3 * static_cast<Eigen::Index>(x.size()));
   c.setFromTriplets(entries.begin(), entries.end());
   return c;
 }
 
 }  // namespace
 
-Mobility mobility(const BarHingeModel& model, const std::optional<Eigen::VectorXd>& velocity) {
+Mobility mobility(const ModelMesh& mesh, const std::optional<Eigen::VectorXd>& velocity) {
   Mobility m;
-  m.nodes = model.corner_node_count();
-  const Points corners(model.positions().begin(), model.positions().begin() + static_cast<std::ptrdiff_t>(m.nodes));
-  const Eigen::SparseMatrix<double> c = compatibility(model);
+  m.nodes = mesh.positions.size();
+  const Points& corners = mesh.positions;
+  const Eigen::SparseMatrix<double> c = compatibility(mesh);
   m.constraints = static_cast<std::size_t>(c.rows());
   const Eigen::Index n = c.cols();
   const Eigen::MatrixXd rigid = rigid_motion_basis(corners);
@@ -112,15 +115,40 @@ Mobility mobility(const Design& design, double t) {
   AssemblyConfiguration c;
   std::vector<Points> rates;
   const bool finite = design.assembly.evaluate_rate(t, c, rates);
-  StiffnessOptions options;
-  const BarHingeModel model(design, c, options);
+  const ModelMesh mesh = model_mesh(design, c);
   std::optional<Eigen::VectorXd> velocity;
   if (finite) {
     Points v;
-    model.node_rates(rates, v);
+    mesh.nodes(rates, v);
     velocity = flatten(v);
   }
-  return mobility(model, velocity);
+  return mobility(mesh, velocity);
+}
+
+nlohmann::json Mobility::to_json() const {
+  return {{"corner_nodes", nodes},
+          {"constraints", constraints},
+          {"internal_mechanisms", internal_mechanisms},
+          {"self_stress_states", self_stress_states},
+          {"singular_values", singular_values},
+          {"largest_zero", largest_zero},
+          {"smallest_nonzero", smallest_nonzero},
+          {"clear", clear()},
+          {"motion_in_mechanisms", optional_json(motion_in_mechanisms)},
+          {"motion_residual", optional_json(motion_residual)}};
+}
+
+std::ostream& operator<<(std::ostream& out, const Mobility& m) {
+  out << "  mobility (rigid panels): " << m.internal_mechanisms << " internal mechanism"
+      << (m.internal_mechanisms == 1 ? "" : "s") << ", " << m.self_stress_states << " states of self-stress";
+  if (m.motion_in_mechanisms) {
+    out << "; the motion lies in " << (m.internal_mechanisms == 1 ? "it" : "them") << " to "
+        << format_human(*m.motion_in_mechanisms);
+  }
+  out << "\n    singular values over the largest: the mechanisms' at most " << format_human(m.largest_zero)
+      << ", the next " << format_human(m.smallest_nonzero)
+      << (m.clear() ? " (a clear gap)" : " (no clear gap: the count is uncertain)") << "\n";
+  return out;
 }
 
 }  // namespace phedra

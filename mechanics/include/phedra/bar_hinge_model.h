@@ -3,11 +3,8 @@
 // (Liu and Paulino 2017, 2018; Filipov et al. 2017), so that its figures compare
 // with the field's codes (docs/design.md, "Mechanics"):
 //
-// - nodes: the panel mesh's vertices at t, those within 1e-9 of the model size
-//   one node; a face with the same node set as an earlier one (a wall two cells
-//   share) is dropped; a quad with two adjacent corners on one node is a
-//   triangle panel (no diagonal, no bending hinge, no centre); any other
-//   collapse is refused (InvalidInputError naming the panel);
+// - nodes and panels: model_mesh.h (a triangle panel has no diagonal, no
+//   bending hinge, no centre);
 // - panels: n4b5 splits each quad along its shorter diagonal (|P0-P2| < |P1-P3|:
 //   on 0-2; refused when they differ by 1e-6 relative or less); n5b8 adds a
 //   centre node at the diagonals' intersection, four spokes and four bending
@@ -19,11 +16,12 @@
 //   triangles at the edge; bending hinges across diagonals or spokes; rotational
 //   stiffness k L, L the hinge's length.
 //
-// The node numbering: the panel mesh's vertices (those in a panel, in order,
-// coincident ones once), then the n5b8 centres in panel order.
+// The node numbering: the mesh's nodes (model_mesh.h), then the n5b8 centres in
+// panel order.
 
 #include "phedra/design.h"
 #include "phedra/hinge_angle.h"
+#include "phedra/model_mesh.h"
 
 #include <Eigen/SparseCore>
 
@@ -79,17 +77,6 @@ struct Hinge {
   std::array<std::size_t, 2> panels{};
 };
 
-/// A panel of the model: a face of the panel mesh.
-struct ModelPanel {
-  std::size_t face = 0;                ///< its panel number (face of panel_mesh(design))
-  std::vector<std::size_t> corners;    ///< 3 or 4 nodes, in the face's order
-  /// n5b8: the centre node; it is corners[base] + ratio (corners[base + 2] - corners[base]).
-  /// n4b5: the panel is split along corners[base] - corners[base + 2].
-  std::optional<std::size_t> centre;
-  std::size_t base = 0;
-  double ratio = 0.0;
-};
-
 class BarHingeModel {
  public:
   /// The model of `design` at the configuration `at` (its t). Throws
@@ -97,19 +84,21 @@ class BarHingeModel {
   /// diagonals are equal (n4b5).
   BarHingeModel(const Design& design, const AssemblyConfiguration& at, const StiffnessOptions& options);
 
-  double t() const { return t_; }
+  double t() const { return mesh_.t; }
   PanelModel panel_model() const { return panels_model_; }
   std::size_t node_count() const { return positions_.size(); }
-  std::size_t corner_node_count() const { return node_vertex_.size(); }
+  std::size_t corner_node_count() const { return mesh_.positions.size(); }
   const Points& positions() const { return positions_; }
   const std::vector<Bar>& bars() const { return bars_; }
   const std::vector<Hinge>& hinges() const { return hinges_; }
-  const std::vector<ModelPanel>& panels() const { return panels_; }
+  /// The mesh: its nodes are the model's first nodes; its panels have their centres (n5b8) or splits (n4b5).
+  const ModelMesh& mesh() const { return mesh_; }
+  const std::vector<ModelPanel>& panels() const { return mesh_.panels; }
   std::size_t fold_count() const { return folds_; }
   std::size_t bend_count() const { return hinges_.size() - folds_; }
   /// Panels of the panel mesh not in the model (walls two cells share, kept once there too).
-  std::size_t dropped_faces() const { return dropped_; }
-  std::size_t triangle_panels() const { return triangles_; }
+  std::size_t dropped_faces() const { return mesh_.dropped_faces; }
+  std::size_t triangle_panels() const { return mesh_.triangle_panels; }
 
   /// The nodes' positions in another configuration of the same design
   /// (the centres follow their panels).
@@ -129,14 +118,13 @@ class BarHingeModel {
   Eigen::SparseMatrix<double> stiffness() const;
 
  private:
-  std::vector<std::size_t> mesh_vertex_node_;  ///< panel-mesh vertex -> node (SIZE_MAX: unused)
-  std::vector<VertexRef> node_vertex_;         ///< corner node -> a member vertex at it
-  Points positions_;
+  /// The centres follow their panels: out's first nodes are set.
+  void place_centres(Points& out) const;
+  ModelMesh mesh_;
+  Points positions_;  ///< the mesh's nodes, then the centres
   std::vector<Bar> bars_;
   std::vector<Hinge> hinges_;
-  std::vector<ModelPanel> panels_;
-  std::size_t folds_ = 0, dropped_ = 0, triangles_ = 0;
-  double t_ = 0.0;
+  std::size_t folds_ = 0;
   PanelModel panels_model_ = PanelModel::n5b8;
 };
 

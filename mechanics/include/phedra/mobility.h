@@ -13,9 +13,12 @@
 // count takes singular values under 1e-9 of the largest and reports the gap
 // between the two sides of that line.
 
-#include "phedra/bar_hinge_model.h"
+#include "phedra/model_mesh.h"
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
+
+#include <iosfwd>
 
 #include <optional>
 #include <vector>
@@ -37,14 +40,17 @@ struct Mobility {
   std::optional<double> motion_residual;       ///< |C v| / (|C| |v|): 0 when v keeps the panels rigid
   /// Whether the count is sound: the gap is at least 1e4.
   bool clear() const { return smallest_nonzero == 0.0 || largest_zero == 0.0 || smallest_nonzero > 1e4 * largest_zero; }
+  nlohmann::json to_json() const;
 };
+
+/// Two lines for people: the counts, whether the motion is the mechanism, the singular values' gap.
+std::ostream& operator<<(std::ostream& out, const Mobility& m);
 
 /// The relative singular value under which a direction is a mechanism.
 inline constexpr double mechanism_threshold = 1e-9;
 
-/// The mobility of the model's panels (its corner nodes; centres play no part)
-/// and the velocity of its corner nodes (3 x corner nodes), if known.
-Mobility mobility(const BarHingeModel& model, const std::optional<Eigen::VectorXd>& velocity);
+/// The mobility of the mesh's panels and the velocity of its nodes (3 x nodes), if known.
+Mobility mobility(const ModelMesh& mesh, const std::optional<Eigen::VectorXd>& velocity);
 
 /// The mobility of `design` at t, with the exact velocity.
 Mobility mobility(const Design& design, double t);
