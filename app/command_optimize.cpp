@@ -2,6 +2,7 @@
 //   [--vary GROUPS] [--no-keep-buildable] [--tol REL] [--max-seconds S] [--closest FILE] [--json]
 
 #include "commands.h"
+#include "phedra/mechanics_figures.h"
 #include "phedra/report_values.h"
 #include "phedra/buildability.h"
 #include "phedra/design_preset.h"
@@ -62,8 +63,11 @@ void add_optimize_command(CLI::App& app, Context& context) {
   auto o = std::make_shared<OptimizeCommandOptions>();
   std::string names;
   for (const std::string& n : figure_names()) names += (names.empty() ? "" : ", ") + n;
+  std::string mechanics;
+  for (const std::string& n : mechanics_figure_names()) mechanics += (mechanics.empty() ? "" : ", ") + n;
   CLI::App* sub = app.add_subcommand(
-      "optimize", "Inverse design: the design nearest the input whose metamaterial figures (phedra metrics) meet "
+      "optimize", "Inverse design: the design nearest the input whose metamaterial figures (phedra metrics) and "
+                  "mechanics (phedra mechanics) meet "
                   "targets, buildable over its whole flexion interval (unless --no-keep-buildable); every figure "
                   "printed is recomputed on the written file. Exit 0 reached, 1 not reached (nothing written unless "
                   "--closest), 2 bad input, 3 unwritable output");
@@ -71,7 +75,9 @@ void add_optimize_command(CLI::App& app, Context& context) {
   sub->add_option("-t,--target", o->targets,
                   "NAME=VALUE, NAME>=VALUE or NAME<=VALUE (repeatable). NAME: " + names +
                       " (Poisson's ratios at t*, deployment ratios over the interval, t_mu - t_lambda, largest / "
-                      "smallest enclosed volume)")
+                      "smallest enclosed volume); the mechanics (phedra mechanics, as made: at t* and with the folds "
+                      "at rest there): " + mechanics + " (second over first non-rigid eigenvalue, the motion's "
+                      "stiffness, the barrier to the second minimum); mechanics.bistable alone: two minima")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sub->add_option("--fit", o->fit,
                   "A surface to fit: JSON {\"points\": [[x, y, z], ...]} the design at t* should pass near (RMS "

@@ -311,3 +311,21 @@ TEST_CASE("FigureTarget parses the three forms and names them back", "[optimize]
   CHECK_THROWS_AS(FigureTarget::parse("volume_ratio=nan"), InvalidInputError);
   CHECK_THROWS_AS(FigureTarget::parse("volume_ratio=2x"), InvalidInputError);
 }
+
+TEST_CASE("optimize targets the mechanics: the gap reached, checked by phedra mechanics on the written file",
+          "[optimize][mechanics]") {
+  CHECK(FigureTarget::parse("mechanics.gap>=3").kind == FigureTarget::Kind::at_least);
+  CHECK(FigureTarget::parse("mechanics.motion_stiffness<=0.01").kind == FigureTarget::Kind::at_most);
+  CHECK(FigureTarget::parse("mechanics.bistable").to_string() == "mechanics.bistable");
+  CHECK(FigureTarget::parse("mechanics.barrier>=0.5").value == 0.5);
+  CHECK_THROWS_WITH(FigureTarget::parse("mechanics.bistable=1"), Contains("write it alone"));
+  CHECK_THROWS_WITH(FigureTarget::parse("mechanics.gaps>=3"), Contains("mechanics.barrier"));
+  TempDir dir("optimize-mechanics");
+  const Run run = phedra_cli({"optimize", presets + "/default.json", "--target", "mechanics.gap>=2.6", "-o",
+                              dir / "gap.json", "--max-seconds", "60"});
+  REQUIRE(run.code == 0);
+  const Run check = phedra_cli({"mechanics", dir / "gap.json", "--json"});
+  REQUIRE(check.code == 0);
+  CHECK(json::parse(check.out)["gap"].get<double>() >= 2.6);
+  CHECK(phedra_cli({"check", dir / "gap.json"}).code == 0);
+}

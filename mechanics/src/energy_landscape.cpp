@@ -139,8 +139,10 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   // Equilibria: the rest state, and every change of sign of dE/dt between samples.
   const double resolution = 1e-12 * (hi - lo);
   // At a flexion limit dE/dt is infinite, at the rest state zero: their signs
-  // are the ones just beside them, towards the other end of the pair.
-  const double step = 1e-9 * (hi - lo);
+  // are the ones beside them, towards the other end of the pair, 1e-6 of the
+  // interval away (closer, rounding in the positions, about 1e-15 of the model
+  // size and more where the motion is ill-conditioned, can outweigh the rate).
+  const double step = 1e-6 * (hi - lo);
   auto beside = [&](std::size_t i, double towards) {
     const bool moved = i == rest || !points[i].rate;
     return moved ? carried(fold, points[i], points[i].t + (towards > points[i].t ? step : -step)) : points[i];

@@ -1,7 +1,9 @@
 #include "phedra/optimize.h"
+#include "phedra/mechanics_figures.h"
 
 #include "repair_search.h"
 
+#include "phedra/assembly_check.h"
 #include "phedra/buildability.h"
 #include "phedra/design_preset.h"
 #include "phedra/errors.h"
@@ -20,6 +22,12 @@ using namespace repair_search;
 
 FigureTarget FigureTarget::parse(const std::string& text) {
   FigureTarget t;
+  if (text == "mechanics.bistable") {  // a property: two minima in the energy landscape
+    t.name = text;
+    t.kind = Kind::at_least;
+    t.value = 1.0;
+    return t;
+  }
   std::size_t at = text.find(">=");
   std::size_t width = 2;
   if (at != std::string::npos) {
@@ -32,7 +40,8 @@ FigureTarget FigureTarget::parse(const std::string& text) {
     throw InvalidInputError("--target", "\"" + text + "\": expected NAME=VALUE, NAME>=VALUE or NAME<=VALUE");
   }
   t.name = text.substr(0, at);
-  const std::vector<std::string>& names = figure_names();
+  std::vector<std::string> names = figure_names();
+  names.insert(names.end(), mechanics_figure_names().begin(), mechanics_figure_names().end());
   if (std::find(names.begin(), names.end(), t.name) == names.end()) {
     std::string known;
     for (const std::string& n : names) known += (known.empty() ? "" : ", ") + n;
@@ -49,10 +58,15 @@ FigureTarget FigureTarget::parse(const std::string& text) {
   if (used == 0 || used != value.size() || !std::isfinite(t.value)) {
     throw InvalidInputError("--target", "\"" + text + "\": the value \"" + value + "\" is not a number");
   }
+  if (t.name == "mechanics.bistable") {
+    throw InvalidInputError("--target", "\"" + text + "\": mechanics.bistable is a property: write it alone "
+                                                        "(--target mechanics.bistable)");
+  }
   return t;
 }
 
 std::string FigureTarget::to_string() const {
+  if (name == "mechanics.bistable") return name;
   return name + (kind == Kind::equal ? "=" : kind == Kind::at_least ? ">=" : "<=") + format_human(value);
 }
 
@@ -74,7 +88,9 @@ double shortfall(const FigureTarget& t, double value, const OptimizeOptions& o) 
 }
 
 bool needs_interval(const OptimizeOptions& o) {
-  return std::any_of(o.targets.begin(), o.targets.end(), [](const FigureTarget& t) { return figure_needs_interval(t.name); });
+  return std::any_of(o.targets.begin(), o.targets.end(), [](const FigureTarget& t) {
+    return !is_mechanics_figure(t.name) && figure_needs_interval(t.name);
+  });
 }
 
 constexpr double undefined_error = 500.0;  ///< a figure that is undefined on a design: far from any goal
@@ -83,20 +99,38 @@ constexpr double undefined_error = 500.0;  ///< a figure that is undefined on a 
 
 std::vector<TargetOutcome> evaluate_targets(const Design& design, const OptimizeOptions& options) {
   std::vector<TargetOutcome> out;
-  if (!options.targets.empty()) {
+  std::vector<std::string> mechanics;
+  bool metrics = false;
+  for (const FigureTarget& t : options.targets) {
+    if (is_mechanics_figure(t.name)) {
+      mechanics.push_back(t.name);
+    } else {
+      metrics = true;
+    }
+  }
+  std::optional<MetricsReport> report;
+  if (metrics) {
     MetricsOptions m;
     m.samples = needs_interval(options) ? options.samples : 2;
     m.axes = options.axes;
-    const MetricsReport report = metamaterial_metrics(design, m);
-    for (const FigureTarget& t : options.targets) {
-      TargetOutcome o;
-      o.target = t.to_string();
-      o.after = report.figure(t.name);
-      if (o.after && !std::isfinite(*o.after)) o.after.reset();
+    report = metamaterial_metrics(design, m);
+  }
+  std::optional<MechanicsFigures> figures;
+  if (!mechanics.empty()) figures = mechanics_figures(design, mechanics);
+  for (const FigureTarget& t : options.targets) {
+    TargetOutcome o;
+    o.target = t.to_string();
+    o.after = figures && is_mechanics_figure(t.name) ? figures->figure(t.name) : report->figure(t.name);
+    if (o.after && !std::isfinite(*o.after)) o.after.reset();
+    if (t.name == "mechanics.bistable" || (t.name == "mechanics.barrier" && !figures->bistable)) {
+      // Not yet bistable: how far, by the landscape's continuous measure (the search's slope).
+      o.met = t.name == "mechanics.bistable" && figures->bistable;
+      o.error = o.met ? 0.0 : (t.name == "mechanics.barrier" ? 10.0 : 1.0) + 10.0 * std::max(0.0, -figures->bistability);
+    } else {
       o.error = o.after ? std::abs(shortfall(t, *o.after, options)) : undefined_error;
       o.met = o.after && o.error == 0.0;
-      out.push_back(o);
     }
+    out.push_back(o);
   }
   if (options.fit) {
     TargetOutcome o;
@@ -219,13 +253,16 @@ class TargetRun {
   TargetSearch& search() { return search_; }
   Problem& problem() { return problem_; }
 
-  /// All targets met by the metrics, and (keep_buildable) buildable by the report.
+  /// All targets met by the metrics, the geometry sound as `phedra check` says
+  /// (planarity, isometry, closure: a design next to a bifurcation inside its
+  /// interval is not), and (keep_buildable) buildable by the report.
   bool verified(const std::vector<double>& x) {
     try {
       const Design d = design_from_json(variables_.preset_at(x));
       for (const TargetOutcome& o : evaluate_targets(d, options_)) {
         if (!o.met) return false;
       }
+      if (!check_assembly(d.assembly, {}).passed()) return false;
       if (!options_.keep_buildable) return true;
       if (verify_buildable(d, options_.bounds).buildable()) return true;
       // Reached, but the motion collides away from t*: the sweep joins the constraints.
