@@ -7,10 +7,9 @@
 
 #include "phedra/errors.h"
 #include "phedra/mechanics_charts.h"
-#include "phedra/mobility.h"
+#include "phedra/mechanics_report.h"
 #include "phedra/number_format.h"
 #include "phedra/oscillation_gltf.h"
-#include "phedra/report_values.h"
 
 #include <filesystem>
 #include <memory>
@@ -55,14 +54,6 @@ StiffnessOptions stiffness_options(const MechanicsCommandOptions& o) {
   }
   s.validate();
   return s;
-}
-
-nlohmann::json stiffness_json(const StiffnessOptions& s) {
-  if (s.material) {
-    return {{"material", {{"E", s.material->youngs_modulus}, {"nu", s.material->poisson}, {"thickness", s.material->thickness},
-                          {"length_scale", optional_json(s.material->length_scale)}}}};
-  }
-  return {{"bar_EA", s.bar}, {"fold_KF", s.fold_value()}, {"bend_KB", s.bend}};
 }
 
 std::string list(const std::vector<double>& values, std::size_t at_most = 8) {
@@ -185,7 +176,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
   CLI::Option* over = sub->add_option("--over-interval", o->over_interval,
                                       "N configurations over the flexion interval: the smallest modes tracked from one to "
                                       "the next, crossings flagged, the gap (CSV, JSON, SVG or PNG with -o)");
-  CLI::Option* energy = sub->add_flag("--energy", o->energy,
+  sub->add_flag("--energy", o->energy,
                                       "The exact energy landscape of the motion from a rest state (--rest-t or "
                                       "--rest-fraction): E(t), dE/dt, equilibria, bistability, forces (CSV, JSON, SVG or PNG with -o)")
                             ->excludes(over);
@@ -200,8 +191,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
                   "--over-interval or --energy .csv, .svg or .png (the plot); repeatable")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   sub->add_flag("--json", o->json, "Print the JSON on standard output instead of the summary");
-  (void)energy;
-  sub->callback([o, sub, &context] {
+  sub->callback([o, &context] {
     const bool plots = o->over_interval || o->energy;
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
@@ -238,51 +228,21 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       }
       return value;
     };
-    const double t = o->t ? inside(*o->t, "--t", "the configuration") : o->fraction ? at_fraction(*o->fraction, "--fraction") : a.t_star();
-
-    AssemblyConfiguration configuration;
-    std::vector<Points> rates;
-    const bool finite = a.evaluate_rate(t, configuration, rates);
-    const BarHingeModel model(design, configuration, stiffness);
-    std::optional<Eigen::VectorXd> velocity;
-    if (finite) {
-      Points v;
-      model.node_rates(rates, v);
-      velocity = flatten(v);
-    }
-    const ModeAnalysis analysis = analyze_modes(model, velocity, o->modes);
-    const Mobility mobile = mobility(model.mesh(), velocity);
-    std::optional<ModesOverInterval> over;
-    if (o->over_interval) over = modes_over_interval(design, *o->over_interval, stiffness, o->modes);
-    std::optional<EnergyLandscape> landscape;
+    MechanicsRequest request;
+    request.t = o->t ? inside(*o->t, "--t", "the configuration")
+                     : o->fraction ? at_fraction(*o->fraction, "--fraction") : a.t_star();
+    request.stiffness = stiffness;
+    request.modes = o->modes;
+    request.over_interval = o->over_interval;
     if (o->energy) {
       EnergyOptions e;
       e.rest_t = o->rest_t ? inside(*o->rest_t, "--rest-t", "the rest state") : at_fraction(*o->rest_fraction, "--rest-fraction");
       e.samples = o->samples;
-      e.stiffness = stiffness;
       e.axes = parse_metrics_axes(o->axes);
-      landscape = energy_landscape(design, e);
+      request.energy = e;
     }
-
-    nlohmann::json document = {
-        {"name", a.name()},
-        {"t", t},
-        {"fraction", (t - a.flexion_interval().lower.t) / a.flexion_interval().width()},
-        {"panels", to_string(stiffness.panels)},
-        {"stiffness", stiffness_json(stiffness)},
-        {"nodes", analysis.nodes},
-        {"bars", analysis.bars},
-        {"hinges", {{"fold", analysis.folds}, {"bend", analysis.bends}}},
-        {"rigid_body_modes", analysis.rigid_body_modes},
-        {"largest_eigenvalue", analysis.largest_eigenvalue},
-        {"eigenvalues", std::vector<double>(analysis.eigenvalues.data(), analysis.eigenvalues.data() + analysis.eigenvalues.size())},
-        {"motion_alignment", optional_json(analysis.motion_alignment)},
-        {"motion_in_span", analysis.motion_in_span},
-        {"gap", optional_json(analysis.gap)},
-        {"motion_stiffness", optional_json(analysis.motion_stiffness)},
-        {"mobility", mobile.to_json()}};
-    if (over) document["over_interval"] = over->to_json();
-    if (landscape) document.update(landscape->to_json());
+    const MechanicsReport report = mechanics_report(design, request);
+    const nlohmann::json document = report.to_json();
 
     for (const std::string& path : o->outputs) {
       const std::string ext = std::filesystem::path(path).extension().string();
@@ -290,18 +250,18 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       if (ext == ".json") {
         content = document.dump(2) + "\n";
       } else if (ext == ".glb" || ext == ".gltf") {
-        nlohmann::json extras = {{"name", a.name()},
-                                 {"t", t},
-                                 {"model_size", a.model_size()},
-                                 {"panels", to_string(stiffness.panels)},
-                                 {"eigenvalues", document["eigenvalues"]},
-                                 {"motion_alignment", document["motion_alignment"]},
-                                 {"fields", "the modes in order, then the exact motion (each one oscillation)"}};
-        content = modes_gltf(model, analysis, a.model_size(), a.name(), ext, extras);
+        const nlohmann::json extras = {{"name", a.name()},
+                                       {"t", report.t},
+                                       {"model_size", a.model_size()},
+                                       {"panels", to_string(stiffness.panels)},
+                                       {"eigenvalues", document["eigenvalues"]},
+                                       {"motion_alignment", document["motion_alignment"]},
+                                       {"fields", "the modes in order, then the exact motion (each one oscillation)"}};
+        content = modes_gltf(*report.model, report.modes, a.model_size(), a.name(), ext, extras);
       } else if (ext == ".csv") {
-        content = landscape ? landscape->to_csv() : over->to_csv();
+        content = report.energy ? report.energy->to_csv() : report.over_interval->to_csv();
       } else {
-        const Chart chart = landscape ? energy_chart(*landscape) : modes_chart(*over);
+        const Chart chart = report.energy ? energy_chart(*report.energy) : modes_chart(*report.over_interval);
         content = ext == ".svg" ? chart_svg(chart) : chart_png(chart);
       }
       emit(content, path, o->preset, context.out);
@@ -311,13 +271,12 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       return;
     }
     context.out << "mechanics: " << a.name() << " (" << design.kind << "), " << to_string(stiffness.panels) << " at t = "
-                << format_human(t) << (t == a.t_star() ? " (t*)" : "") << "\n";
-    print_modes(context.out, analysis, stiffness, model);
-    context.out << mobile;
-    if (over) print_over_interval(context.out, *over);
-    if (landscape) print_energy(context.out, *landscape);
+                << format_human(report.t) << (report.t == a.t_star() ? " (t*)" : "") << "\n";
+    print_modes(context.out, report.modes, stiffness, *report.model);
+    context.out << report.mobility;
+    if (report.over_interval) print_over_interval(context.out, *report.over_interval);
+    if (report.energy) print_energy(context.out, *report.energy);
     for (const std::string& path : o->outputs) context.out << "wrote " << path << '\n';
-    (void)sub;
   });
 }
 
