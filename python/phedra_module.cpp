@@ -1,7 +1,7 @@
 // The Python module `phedra` (issue 26, docs/python.md): a design from a preset
 // (a file, a dict or JSON text), its exact motion as numpy arrays, and the
-// reports the command prints (check, buildability, metrics) as dicts, repair,
-// and the exports. Errors raise phedra.Error subclasses with the command's
+// reports the command prints (check, buildability, metrics, mechanics) as
+// dicts, repair, and the exports. Errors raise phedra.Error subclasses with the command's
 // messages: phedra.InputError (exit 2 there, with .field), phedra.FileError (3).
 
 #include "phedra/assembly_check.h"
@@ -11,10 +11,12 @@
 #include "phedra/errors.h"
 #include "phedra/files.h"
 #include "phedra/fold_export.h"
+#include "phedra/mechanics_report.h"
 #include "phedra/gltf_export.h"
 #include "phedra/mesh_export.h"
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/motion_document.h"
+#include "phedra/number_format.h"
 #include "phedra/preset.h"
 #include "phedra/repair.h"
 #include "phedra/optimize.h"
@@ -27,7 +29,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -155,6 +159,134 @@ class PyDesign {
     options.samples = samples;
     options.axes = parse_metrics_axes(axes);
     return to_python(metamaterial_metrics(*design_, options).to_json());
+  }
+
+  /// phedra mechanics as a dict (its --json), with numpy arrays: the nodes, the
+  /// modes (k, N, 3), the exact velocity, K as COO triplets, the energy curve.
+  py::dict mechanics(std::optional<double> t, std::optional<double> fraction, const std::string& panels, double bar,
+                     std::optional<double> fold, double bend, std::optional<std::pair<double, double>> material,
+                     std::optional<double> thickness, std::size_t modes, std::optional<double> rest_t,
+                     std::optional<double> rest_fraction, std::size_t samples, std::optional<std::size_t> over_interval) const {
+    const Assembly& a = design_->assembly;
+    auto in_interval = [&](double value, const char* name) {
+      if (!a.flexion_interval().contains(value)) {
+        throw InvalidInputError(name, std::string(name) + " = " + format_number(value) + " is outside the flexion interval [" +
+                                          format_number(document_.t_lambda) + ", " + format_number(document_.t_mu) + "]");
+      }
+      return value;
+    };
+    auto at_fraction = [&](double f, const char* name) {
+      if (!(f >= 0.0 && f <= 1.0)) {
+        throw InvalidInputError(name, std::string(name) + " must be in [0, 1] (0: t_lambda, 1: t_mu), got " + format_number(f));
+      }
+      return a.t_at_fraction(f);
+    };
+    if (t && fraction) throw InvalidInputError("fraction", "give t or fraction, not both");
+    if (rest_t && rest_fraction) throw InvalidInputError("rest_fraction", "give rest_t or rest_fraction, not both");
+    MechanicsRequest request;
+    request.t = t ? in_interval(*t, "t") : fraction ? at_fraction(*fraction, "fraction") : a.t_star();
+    request.stiffness.panels = panels == "n4b5" ? PanelModel::n4b5 : PanelModel::n5b8;
+    if (panels != "n4b5" && panels != "n5b8") throw InvalidInputError("panels", "\"" + panels + "\": n4b5 or n5b8");
+    request.stiffness.bar = bar;
+    request.stiffness.bend = bend;
+    request.stiffness.fold = fold;
+    if (material) {
+      if (!thickness) throw InvalidInputError("thickness", "material=(E, nu) needs the plate thickness: thickness=T");
+      request.stiffness.material = Material{material->first, material->second, *thickness, std::nullopt};
+    } else if (thickness) {
+      throw InvalidInputError("thickness", "only with material=(E, nu)");
+    }
+    request.modes = modes;
+    request.over_interval = over_interval;
+    if (rest_t || rest_fraction) {
+      EnergyOptions e;
+      e.rest_t = rest_t ? in_interval(*rest_t, "rest_t") : at_fraction(*rest_fraction, "rest_fraction");
+      e.samples = samples;
+      request.energy = e;
+    }
+    const MechanicsReport r = [&] {
+      try {
+        return mechanics_report(*design_, request);
+      } catch (const InvalidInputError& e) {  // the command's option names as this method's keywords
+        if (e.field().rfind("--", 0) != 0) throw;
+        std::string name = e.field().substr(2);
+        std::replace(name.begin(), name.end(), '-', '_');
+        throw InvalidInputError(name, e.reason());
+      }
+    }();
+    py::dict out = to_python(r.to_json());
+    const BarHingeModel& model = *r.model;
+    const py::ssize_t n = static_cast<py::ssize_t>(model.node_count());
+    auto points = [&](const Points& x) {
+      py::array_t<double> arr({n, py::ssize_t{3}});
+      auto v = arr.mutable_unchecked<2>();
+      for (py::ssize_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) v(i, c) = x[static_cast<std::size_t>(i)][c];
+      return arr;
+    };
+    out["node_positions"] = points(model.positions());
+    // Each corner node: a row of evaluate(t) at the same point (-1 for the n5b8 centres).
+    Points rows;
+    document_.positions(r.t, rows);
+    const std::vector<std::size_t> same = [&] {
+      Points all = model.positions();
+      all.resize(model.corner_node_count());
+      all.insert(all.end(), rows.begin(), rows.end());
+      return coincident_points({all}, 1e-9 * a.model_size());
+    }();
+    std::vector<std::int64_t> node_vertex(static_cast<std::size_t>(n), -1);
+    const std::size_t corners = model.corner_node_count();
+    for (std::size_t k = corners; k < same.size(); ++k) {
+      if (same[k] < corners && node_vertex[same[k]] < 0) node_vertex[same[k]] = static_cast<std::int64_t>(k - corners);
+    }
+    out["node_vertex"] = py::array_t<std::int64_t>(static_cast<py::ssize_t>(node_vertex.size()), node_vertex.data());
+    const Eigen::MatrixXd& m = r.modes.modes;
+    py::array_t<double> vectors({static_cast<py::ssize_t>(m.cols()), n, py::ssize_t{3}});
+    auto mv = vectors.mutable_unchecked<3>();
+    for (Eigen::Index k = 0; k < m.cols(); ++k)
+      for (py::ssize_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) mv(k, i, c) = m(3 * i + c, k);
+    out["modes"] = vectors;
+    if (r.modes.velocity.size() > 0) {
+      py::array_t<double> v({n, py::ssize_t{3}});
+      auto vv = v.mutable_unchecked<2>();
+      for (py::ssize_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) vv(i, c) = r.modes.velocity(3 * i + c);
+      out["velocity"] = v;
+    } else {
+      out["velocity"] = py::none();
+    }
+    const Eigen::SparseMatrix<double> k = model.stiffness();
+    std::vector<std::int64_t> row, col;
+    std::vector<double> value;
+    for (int c = 0; c < k.outerSize(); ++c) {
+      for (Eigen::SparseMatrix<double>::InnerIterator it(k, c); it; ++it) {
+        row.push_back(it.row()), col.push_back(it.col()), value.push_back(it.value());
+      }
+    }
+    py::dict coo;
+    coo["row"] = py::array_t<std::int64_t>(static_cast<py::ssize_t>(row.size()), row.data());
+    coo["col"] = py::array_t<std::int64_t>(static_cast<py::ssize_t>(col.size()), col.data());
+    coo["value"] = py::array_t<double>(static_cast<py::ssize_t>(value.size()), value.data());
+    coo["shape"] = py::make_tuple(k.rows(), k.cols());
+    out["K"] = coo;
+    if (r.energy) {
+      const std::size_t count = r.energy->samples.size();
+      py::array_t<double> ts(static_cast<py::ssize_t>(count)), es(static_cast<py::ssize_t>(count)),
+          rates(static_cast<py::ssize_t>(count));
+      for (std::size_t i = 0; i < count; ++i) {
+        const EnergySample& s = r.energy->samples[i];
+        ts.mutable_at(static_cast<py::ssize_t>(i)) = s.t;
+        es.mutable_at(static_cast<py::ssize_t>(i)) = s.energy;
+        rates.mutable_at(static_cast<py::ssize_t>(i)) = s.rate ? *s.rate : std::numeric_limits<double>::quiet_NaN();
+      }
+      py::dict curve;
+      curve["t"] = ts;
+      curve["E"] = es;
+      curve["dE_dt"] = rates;  // NaN at the flexion limits, where it is infinite
+      out["energy"] = curve;
+    }
+    return out;
   }
 
   /// The nearest buildable design (None when none was found) and the result as a dict.
@@ -388,6 +520,16 @@ PYBIND11_MODULE(phedra, m) {
            "Whether it can be built and over which part of the motion (phedra check --json's buildability)")
       .def("metrics", &PyDesign::metrics, py::arg("samples") = 101, py::arg("axes") = "structural",
            "Metamaterial figures against t (phedra metrics --json)")
+      .def("mechanics", &PyDesign::mechanics, py::kw_only(), py::arg("t") = py::none(), py::arg("fraction") = py::none(),
+           py::arg("panels") = "n5b8", py::arg("bar") = 1e3, py::arg("fold") = py::none(), py::arg("bend") = 0.1,
+           py::arg("material") = py::none(), py::arg("thickness") = py::none(), py::arg("modes") = 6,
+           py::arg("rest_t") = py::none(), py::arg("rest_fraction") = py::none(), py::arg("samples") = 201,
+           py::arg("over_interval") = py::none(),
+           "phedra mechanics as a dict (the keys of --json) with numpy arrays: node_positions (N, 3), node_vertex "
+           "(N,: the row of evaluate(t) at each corner node, -1 for n5b8 centres), modes (k, N, 3), velocity (N, 3, "
+           "the exact dX/dt, rigid motions out; None at a flexion limit), K (COO: row, col, value, shape); with "
+           "rest_t or rest_fraction the energy landscape: energy {t, E, dE_dt (NaN at the limits)}, equilibria, "
+           "bistable, barrier")
       .def("repair", &PyDesign::repair, py::arg("vary") = "apex_heights,directions", py::arg("require") = 1.0,
            py::arg("objective") = "distance", py::arg("max_seconds") = 60.0,
            "The nearest buildable design: (Design or None, result dict) as phedra repair")

@@ -200,3 +200,45 @@ def test_the_example_sweeps_and_plots(tmp_path):
     assert "nu_12 = " in run.stdout and out.stat().st_size > 1000
     with open(out, "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+
+
+def test_mechanics_equals_the_command_and_its_arrays_hold_together():
+    d = phedra.load(preset("parallelogram-tube.json"))
+    m = d.mechanics(fraction=0.4, modes=3, rest_fraction=0.5, samples=21)
+    run = cli("mechanics", preset("parallelogram-tube.json"), "--fraction", "0.4", "--modes", "3", "--energy",
+              "--rest-fraction", "0.5", "--samples", "21", "--json")
+    assert run.returncode == 0, run.stderr
+    doc = json.loads(run.stdout)
+    for key in ["t", "nodes", "bars", "hinges", "rigid_body_modes", "eigenvalues", "gap", "motion_alignment",
+                "motion_stiffness", "equilibria", "bistable"]:
+        assert m[key] == doc[key], key
+    # K from its COO triplets: the modes are its eigenvectors, the velocity its soft direction.
+    n = m["K"]["shape"][0]
+    K = np.zeros((n, n))
+    np.add.at(K, (m["K"]["row"], m["K"]["col"]), m["K"]["value"])
+    assert np.allclose(K, K.T, atol=1e-9 * np.abs(K).max())
+    for phi, value in zip(m["modes"], m["eigenvalues"]):
+        v = phi.ravel()
+        assert np.linalg.norm(K @ v - value * v) <= 1e-8 * np.abs(K).max()
+    u = m["velocity"].ravel() / np.linalg.norm(m["velocity"])
+    assert abs(u @ K @ u - m["motion_stiffness"]) <= 1e-9 * m["motion_stiffness"]
+    # Corner nodes are vertices of evaluate(t); the n5b8 centres are not (-1).
+    x = d.evaluate(m["t"])
+    corners = m["node_vertex"] >= 0
+    assert corners.sum() == m["mobility"]["corner_nodes"]
+    assert np.allclose(m["node_positions"][corners], x[m["node_vertex"][corners]], atol=1e-12)
+    e = m["energy"]
+    assert e["t"].shape == e["E"].shape == e["dE_dt"].shape == (21,)
+    assert np.isnan(e["dE_dt"][0]) and np.isnan(e["dE_dt"][-1]) and not np.isnan(e["dE_dt"][1:-1]).any()
+    assert np.allclose(e["E"], [s["E"] for s in doc["energy"]], rtol=0, atol=1e-15)
+
+
+@pytest.mark.parametrize("kwargs,field", [({"bar": -1.0}, "bar"), ({"fold": 0.0}, "fold"), ({"panels": "n6"}, "panels"),
+                                          ({"fraction": 1.5}, "fraction"), ({"rest_t": 99.0}, "rest_t"),
+                                          ({"modes": 0}, "modes"), ({"material": (1e3, 0.3)}, "thickness"),
+                                          ({"material": (1e3, 0.3), "thickness": 0.1, "panels": "n4b5"}, "material")])
+def test_mechanics_errors_name_the_keyword(kwargs, field):
+    d = phedra.load(preset("parallelogram-tube.json"))
+    with pytest.raises(phedra.InputError) as e:
+        d.mechanics(**kwargs)
+    assert e.value.field == field
