@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the phedra core for the browser with Debian's emscripten (issue 8; repair, issue 14):
 # web/wasm/phedra.mjs + phedra.wasm (an ES module whose default export is the factory `createPhedra`, see
-# wasm/bindings.cpp). Only Eigen, nlohmann-json, tinygltf's header and NLopt
+# wasm/bindings.cpp). Only Eigen, nlohmann-json, tinygltf's header, Spectra's headers and NLopt
 # (compiled from Debian's source package by scripts/build-nlopt-wasm.sh) are
 # needed besides the project's own sources. Incremental: an object is rebuilt when its source or a
 # header changed (em++ -MMD dependency files in build-wasm/).
@@ -15,9 +15,11 @@ mkdir -p "$out/include" "$out/obj" web/wasm
 ln -sfn /usr/include/eigen3/Eigen "$out/include/Eigen"
 ln -sfn /usr/include/nlohmann "$out/include/nlohmann"
 ln -sfn /usr/include/tiny_gltf.h "$out/include/tiny_gltf.h"
+ln -sfn /usr/include/Spectra "$out/include/Spectra"
 bash scripts/build-nlopt-wasm.sh  # NLopt for repair, from Debian's source package (once)
 flags=(-std=c++20 -O3 -fwasm-exceptions -DNDEBUG -Igenerator/include -Itubes/include -Icouplings/include
-       -Iio/include -Ianalysis/include -Iexporters/include -Irepair/include -I"$out/include" -I"$out/nlopt/include")
+       -Iio/include -Ianalysis/include -Imechanics/include -Iexporters/include -Irepair/include -I"$out/include"
+       -I"$out/nlopt/include")
 # One translation unit a module (its sources #included in order, as CMake's unity
 # build does): the heavy headers are compiled once a module, not once a file.
 modules=(generator tubes couplings io analysis repair)
@@ -38,7 +40,13 @@ for m in "${modules[@]}"; do
   sources+=("$out/unity/$m.cpp")
 done
 unity exporters "${exporter_sources[@]}"
-sources+=("$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
+# Mechanics without its plots (cairo) and with Eigen's own Cholesky (no CHOLMOD): the energy landscape.
+mechanics_sources=()
+for f in mechanics/src/*.cpp; do
+  case "$f" in *chart*) ;; *) mechanics_sources+=("$f") ;; esac
+done
+unity mechanics "${mechanics_sources[@]}"
+sources+=("$out/unity/mechanics.cpp" "$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
 objects=()
 pids=()
 jobs="$(nproc)"

@@ -8,6 +8,8 @@
 #include "phedra/buildability.h"
 #include "phedra/panel_nets.h"
 #include "phedra/design.h"
+#include "phedra/energy_landscape.h"
+#include "phedra/mechanics_figures.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
 #include "phedra/gltf_export.h"
@@ -478,6 +480,50 @@ class Designer {
     }
   }
 
+  /// The exact energy landscape of the motion (phedra mechanics --energy): the
+  /// fold springs at rest at `rest_t` (JSON {rest_t, samples}). Returns {ok:
+  /// true, rest_t, t: [...], E: [...], dE_dt: [... null at the limits],
+  /// equilibria: [{t, kind, E, rest}], bistable, barrier, reverse_barrier,
+  /// largest_E, folds}, or {ok: false, field, message}.
+  val energy(const std::string& options_text) const {
+    if (!design_) return failure("", "no design loaded");
+    return answer([&] {
+      const nlohmann::json o = options_text.empty() ? nlohmann::json::object() : parse_json_text(options_text);
+      EnergyOptions options;
+      options.rest_t = o.value("rest_t", design_->assembly.t_star());
+      options.samples = o.value("samples", std::size_t{201});
+      options.stiffness = default_stiffness(*design_);
+      const nlohmann::json j = energy_landscape(*design_, options).to_json();
+      val v = val::object();
+      v.set("ok", true);
+      val t = val::array(), e = val::array(), rate = val::array();
+      for (const nlohmann::json& s : j["energy"]) {
+        t.call<void>("push", s["t"].get<double>());
+        e.call<void>("push", s["E"].get<double>());
+        rate.call<void>("push", s["dE_dt"].is_null() ? val::null() : val(s["dE_dt"].get<double>()));
+      }
+      v.set("t", t);
+      v.set("E", e);
+      v.set("dE_dt", rate);
+      val equilibria = val::array();
+      for (const nlohmann::json& q : j["equilibria"]) {
+        val item = val::object();
+        item.set("t", q["t"].get<double>());
+        item.set("kind", q["kind"].get<std::string>());
+        item.set("E", q["E"].get<double>());
+        item.set("rest", q["rest"].get<bool>());
+        equilibria.call<void>("push", item);
+      }
+      v.set("equilibria", equilibria);
+      for (const char* key : {"rest_t", "largest_E", "barrier", "reverse_barrier"}) {
+        v.set(key, j[key].is_null() ? val::null() : val(j[key].get<double>()));
+      }
+      v.set("bistable", j["bistable"].get<bool>());
+      v.set("folds", j["folds"].get<double>());
+      return v;
+    });
+  }
+
   /// The nearest design whose figures meet targets, as `phedra optimize` finds it.
   /// `options_text`: JSON {targets: ["poisson.nu_12=-0.8", ...], vary:
   /// "apex_heights,directions", max_seconds: 10, fixed: [JSON pointers]}. Returns
@@ -693,5 +739,6 @@ EMSCRIPTEN_BINDINGS(phedra) {
       .function("figures", &Designer::figures)
       .function("optimize", &Designer::optimize)
       .function("thick", &Designer::thick)
+      .function("energy", &Designer::energy)
       .function("plateTriangles", &Designer::plateTriangles);
 }

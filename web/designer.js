@@ -18,6 +18,7 @@
 //   buildability.js  the buildability report and figures, Repair, keep buildable
 //   targets.js       the Targets box: the figures phedra optimize targets, live, and Optimize
 //   thickness.js     the Thick panels box: the plates, their thick interval, drawn at t
+//   energy.js        the Energy box: the energy landscape of the motion from a rest state
 //   modes.js         mode, grid and row sizes, profiles and apexes
 //   files.js         save, open, drop, shipped presets, .glb / FOLD / PNG, the first preset
 //   api.js           window.phedraDesigner, for tests and measurements
@@ -37,6 +38,7 @@ import { DesignState, travelText } from './designer/state.js';
 import { createSurface } from './designer/surface.js';
 import { createTargets } from './designer/targets.js';
 import { createThickness } from './designer/thickness.js';
+import { createEnergy } from './designer/energy.js';
 import { $ } from './designer/util.js';
 
 // --- the stage (before the core loads) ---------------------------------------
@@ -53,7 +55,7 @@ const state = new DesignState();
 
 const handles = createHandles({ ...stage, state, designer, requestRender });
 const surface = createSurface({ scene: stage.scene, state, designer, requestRender, showT: (t) => panel.showT(t), screenOf: (p) => handles.screenOf(p),
-                                onPositions: (t) => thickness?.follow(t) });
+                                onPositions: (t) => { thickness?.follow(t); energy?.follow(t); } });
 const panel = createPanel({
   state,
   locate: (field) => { const p = handles.handleOf(field); return p ? handles.screenOf(p) : null; },
@@ -66,6 +68,7 @@ const framing = createFraming({ ...stage, state, designer, handles, surface, isD
 const checks = createBuildability({ state, designer, panel, surface, apply, onFigures: () => targets.refresh() });
 const targets = createTargets({ state, designer, apply });
 const thickness = createThickness({ scene: stage.scene, state, designer, surface, requestRender });
+const energy = createEnergy({ state, designer });
 
 /// The slider at t* (the input configuration: the surface passes through the
 /// handles); `before`: t* of the previous design, to say when an edit moved it
@@ -120,6 +123,7 @@ function apply(candidate, { keepFigures = false, what = 'edit', record = true, k
   loop.recalibrate();
   if (!keepFigures) checks.scheduleFigures();
   thickness.refresh();
+  energy.refresh();
   panel.showMessage();
   if (framing.framed) framing.refitIfOutside();
   return true;
@@ -163,6 +167,7 @@ function settle() {
   framing.refitIfOutside();
   checks.scheduleFigures();
   thickness.refresh();
+  energy.refresh();
 }
 
 // --- undo and redo ---------------------------------------------------------------
@@ -239,4 +244,4 @@ loop.start({
   drawn: () => { handles.updateLabels(); surface.updatePanelLabel(); },
 });
 
-installApi({ ...stage, state, designer, surface, handles, loop, dragging, checks, files, framing, thickness, apply, applyEdit });
+installApi({ ...stage, state, designer, surface, handles, loop, dragging, checks, files, framing, thickness, energy, apply, applyEdit });

@@ -67,3 +67,44 @@ export function foldAnglePlot(samples, { tLambda, tMu, tStar, format, colour = '
            '</svg>');
   return { svg: svg.join(''), axis: { ...axis, min, max }, x };
 }
+
+/// The designer's energy plot (phedra mechanics --energy): E against t over
+/// [tLambda, tMu], the rest state marked (a diamond and a dashed line), minima
+/// (circles) and maxima (triangles), a cursor at the slider's t. `samples`:
+/// [t, E] pairs; `equilibria`: [{t, kind, E, rest}]. Returns {svg, x}.
+export function energyPlot(samples, equilibria, { tLambda, tMu, restT, format }) {
+  const box = { ...plotBox, height: 150 };
+  const energies = samples.map(([, e]) => e);
+  const max = Math.max(...energies, 0);
+  const axis = niceAxis(0, max > 0 ? max : 1, { minimumSpan: max > 0 ? max * 1e-6 : 1, limit: [0, Infinity] });
+  const x = (t) => box.left + (t - tLambda) / (tMu - tLambda) * (box.width - box.left - box.right);
+  const y = (e) => box.top + (axis.hi - e) / (axis.hi - axis.lo) * (box.height - box.top - box.bottom);
+  const bottom = box.height - box.bottom;
+  const label = (tx, ty, text, anchor = 'start', fill = '#9fb3c8') =>
+    `<text x="${tx.toFixed(1)}" y="${ty.toFixed(1)}" text-anchor="${anchor}" font-size="10" fill="${fill}">${escape(text)}</text>`;
+  const minima = equilibria.filter((q) => q.kind === 'minimum').length;
+  const svg = [`<svg xmlns="http://www.w3.org/2000/svg" width="${box.width}" height="${box.height}" role="img" ` +
+               `aria-label="energy over the motion" data-minima="${minima}" data-max="${max}">`,
+               label(box.left, 10, `energy of the folds at rest at t = ${format(restT)} (largest ${format(max)})`)];
+  for (const e of axis.ticks) {
+    svg.push(`<line x1="${box.left}" x2="${box.width - box.right}" y1="${y(e).toFixed(1)}" y2="${y(e).toFixed(1)}" stroke="#333b45"/>`,
+             label(box.left - 4, y(e) + 3.5, format(e), 'end'));
+  }
+  svg.push(`<line x1="${x(restT).toFixed(1)}" x2="${x(restT).toFixed(1)}" y1="${box.top}" y2="${bottom}" stroke="#ffb74d" stroke-dasharray="2 3"/>`,
+           `<polyline fill="none" stroke="#4fc3f7" stroke-width="1.5" points="${samples.map(([t, e]) => `${x(t).toFixed(1)},${y(e).toFixed(1)}`).join(' ')}"/>`);
+  for (const q of equilibria) {
+    const cx = x(q.t), cy = y(q.E);
+    if (q.rest) {
+      svg.push(`<path class="rest" d="M${cx.toFixed(1)} ${(cy - 6).toFixed(1)} l5 6 l-5 6 l-5 -6 z" fill="#ffb74d" stroke="#222"/>`);
+    } else if (q.kind === 'minimum') {
+      svg.push(`<circle class="minimum" cx="${cx.toFixed(1)}" cy="${cy.toFixed(1)}" r="4.5" fill="#66bb6a" stroke="#222"/>`);
+    } else {
+      svg.push(`<path class="maximum" d="M${cx.toFixed(1)} ${(cy - 6).toFixed(1)} l5 9 l-10 0 z" fill="#ef5350" stroke="#222"/>`);
+    }
+  }
+  svg.push(`<line class="cursor" y1="${box.top}" y2="${bottom}" stroke="#e8e8e8" stroke-dasharray="3 2"/>`,
+           label(box.left, box.height - 4, `t\u03bb ${format(tLambda)}`),
+           label(box.width - box.right, box.height - 4, `${format(tMu)} t\u03bc`, 'end'),
+           '</svg>');
+  return { svg: svg.join(''), x };
+}

@@ -28,20 +28,15 @@ std::optional<double> MechanicsFigures::figure(const std::string& name) const {
   throw InvalidInputError("figure", "unknown figure \"" + name + "\"");
 }
 
-namespace {
-
-/// n5b8 where it models every panel (convex), else n4b5.
-StiffnessOptions default_model(const Design& design, const AssemblyConfiguration& at) {
+StiffnessOptions default_stiffness(const Design& design) {
   StiffnessOptions o;
   try {
-    BarHingeModel(design, at, o);
+    BarHingeModel(design, design.assembly.evaluate(design.assembly.t_star()), o);
   } catch (const InvalidInputError&) {
     o.panels = PanelModel::n4b5;
   }
   return o;
 }
-
-}  // namespace
 
 MechanicsFigures mechanics_figures(const Design& design, const std::vector<std::string>& names) {
   MechanicsFigures f;
@@ -49,7 +44,7 @@ MechanicsFigures mechanics_figures(const Design& design, const std::vector<std::
     return std::find(names.begin(), names.end(), a) != names.end() || std::find(names.begin(), names.end(), b) != names.end();
   };
   const Assembly& a = design.assembly;
-  const StiffnessOptions options = default_model(design, a.evaluate(a.t_star()));
+  const StiffnessOptions options = default_stiffness(design);
   if (wants("mechanics.gap", "mechanics.motion_stiffness")) {
     const ModeAnalysis m = analyze_modes(design, a.t_star(), options, 2);
     f.gap = m.gap;

@@ -13,7 +13,7 @@ import {
   tStarField, withApexAdded, withApexRemoved, withGridSize, withProfileAdded, withProfileRemoved, withRowSize, withSign,
 } from '../../web/designer/edits.js';
 import { presetInGlb } from '../../web/designer/files.js';
-import { foldAnglePlot, niceAxis } from '../../web/plot.js';
+import { energyPlot, foldAnglePlot, niceAxis } from '../../web/plot.js';
 import { canonicalPreset, decimals4, pageTitle, significant4, statusSummary, withArticle, withNumbers } from '../../web/text.js';
 
 const failures = [];
@@ -401,6 +401,12 @@ section('the fold-angle axis', () => {
   const plot = foldAnglePlot([[0, -7.8], [0.5, -6], [1, -5]], { tLambda: 0, tMu: 1, tStar: 0.25, format: significant4 });
   check(plot.svg.includes('<polyline') && plot.svg.includes('t*') && plot.axis.min === -7.8 && plot.axis.max === -5, 'the plot of three samples');
   check(Math.abs(plot.x(0.25) - (plot.x(0) + 0.25 * (plot.x(1) - plot.x(0)))) < 1e-9, 'the plot\'s t axis');
+  // The Energy box's plot: the curve, the rest state, a minimum and a maximum marked.
+  const energy = energyPlot([[0, 0.3], [0.3, 0.5], [0.6, 0.2], [0.8, 0], [1, 0.4]],
+    [{ t: 0.2, kind: 'maximum', E: 0.5 }, { t: 0.6, kind: 'minimum', E: 0.2 }, { t: 0.8, kind: 'minimum', E: 0, rest: true }],
+    { tLambda: 0, tMu: 1, restT: 0.8, format: significant4 });
+  check(energy.svg.includes('data-minima="2"') && energy.svg.includes('class="maximum"') &&
+        energy.svg.includes('class="rest"') && energy.svg.includes('class="minimum"'), 'the energy plot\'s marks');
 });
 
 if (failures.length) {

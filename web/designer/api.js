@@ -5,7 +5,7 @@ import * as THREE from 'three';
 import { $, clone } from './util.js';
 
 /// `parts`: the page's modules (see designer.js) and its apply / applyEdit.
-export function installApi({ camera, renderer, state, designer, surface, handles, loop, dragging, checks, files, framing, thickness, apply, applyEdit }) {
+export function installApi({ camera, renderer, state, designer, surface, handles, loop, dragging, checks, files, framing, thickness, energy, apply, applyEdit }) {
   const tOf = (f) => state.tOf(f);
   window.phedraDesigner = {
     ready: state.info !== null,
@@ -39,6 +39,7 @@ export function installApi({ camera, renderer, state, designer, surface, handles
     apply: (p) => apply(p),
     /// The Thick panels box: its report (null before Show plates), whether the plates show, their triangles as drawn.
     thick: () => thickness.report,
+    energy: () => energy.result,
     platesShown: () => thickness.shown,
     plateTriangleCount: () => thickness.triangles().length / 9,
     /// The camera's distance from the point it orbits, and whether it is gliding to a new framing.

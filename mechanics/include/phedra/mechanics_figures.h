@@ -8,7 +8,7 @@
 //   mechanics.bistable          two minima over the flexion interval
 //   mechanics.barrier           the barrier from the rest state to the other minimum
 
-#include "phedra/design.h"
+#include "phedra/bar_hinge_model.h"
 
 #include <optional>
 #include <string>
@@ -28,6 +28,10 @@ struct MechanicsFigures {
   double bistability = 0.0;
   std::optional<double> figure(const std::string& name) const;
 };
+
+/// The model the figures use: n5b8 where every panel is convex at t*, else n4b5;
+/// MERLIN2's manual stiffness.
+StiffnessOptions default_stiffness(const Design& design);
 
 /// The figures `names` asks for (the stiffness's when gap or motion stiffness,
 /// the landscape's when bistable or barrier).
