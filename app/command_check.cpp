@@ -73,14 +73,21 @@ void add_check_command(CLI::App& app, Context& context) {
       thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
-    // The rigid-panel model's mobility at t*: one internal mechanism, the motion (informative).
-    const Mobility mobile = mobility(loaded.design, loaded.design.assembly.t_star());
+    // The rigid-panel model's mobility at t*: one internal mechanism, the motion
+    // (informative; a design with a degenerate panel has no model: said so).
+    std::optional<Mobility> mobile;
+    std::string no_mobility;
+    try {
+      mobile = mobility(loaded.design, loaded.design.assembly.t_star());
+    } catch (const InvalidInputError& e) {
+      no_mobility = e.what();
+    }
     if (options->json) {
       nlohmann::json j = report_json(report);
       j["geometry_passed"] = report.passed();
       j["passed"] = report.passed() && buildable && thick_fits;
       if (buildability) j["buildability"] = buildability->to_json();
-      j["mobility"] = mobile.to_json();
+      j["mobility"] = mobile ? mobile->to_json() : nlohmann::json{{"error", no_mobility}};
       if (thick) {
         j["thick"] = thick->to_json();
         j["thick_interval"] = j["thick"]["thick_interval"];
@@ -99,7 +106,11 @@ void add_check_command(CLI::App& app, Context& context) {
                        "flexion interval (below; --geometry-only checks the geometry alone)\n";
       }
       context.out << report;
-      context.out << mobile;
+      if (mobile) {
+        context.out << *mobile;
+      } else {
+        context.out << "  mobility: not computed: " << no_mobility << '\n';
+      }
       if (buildability) context.out << *buildability;
       if (thick) {
         if (!thick_fits) context.out << "FAIL: the plates " << format_human(thick->thickness) << " thick collide at t*\n";

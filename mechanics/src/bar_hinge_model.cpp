@@ -87,10 +87,11 @@ ModelMesh model_mesh(const Design& design, const AssemblyConfiguration& at) {
     std::sort(key.begin(), key.end());
     const bool distinct = std::adjacent_find(key.begin(), key.end()) == key.end();
     if (corners.size() < 3 || !distinct) {
-      throw InvalidInputError(panel_name(f), "its corners collapse onto " + std::to_string(key.size()) +
+      const std::size_t nodes = static_cast<std::size_t>(std::unique(key.begin(), key.end()) - key.begin());
+      throw InvalidInputError(panel_name(f), "its corners fall on " + std::to_string(nodes) +
                                                  " nodes at t = " + format_number(at.t) +
-                                                 " (not a quad with two adjacent corners merged): the bar-and-hinge "
-                                                 "model has no panel for it");
+                                                 (nodes == 3 ? " (two opposite corners meet: not a triangle)" : "") +
+                                                 ": the bar-and-hinge model has no panel for it (a degenerate panel)");
     }
     if (!seen.insert(key).second) {
       ++out.dropped_faces;  // a wall two cells share, modelled once
