@@ -15,6 +15,11 @@
 #include "phedra/files.h"
 #include "phedra/preset.h"
 #include "phedra/json_fields.h"
+#include "phedra/energy_landscape.h"
+#include "phedra/mechanics_figures.h"
+#include "phedra/modes_over_interval.h"
+#include "phedra/stiffness_modes.h"
+#include "phedra/tube.h"
 
 #include <malloc.h>
 #include <sys/wait.h>
@@ -181,6 +186,7 @@ class Runner {
     gltf_figures();
     repair_figures();
     optimize_figures();
+    mechanics_figures();
     return report_;
   }
 
@@ -456,6 +462,91 @@ class Runner {
     const double nu = *metamaterial_metrics(design_from_json(helix), {.samples = 2}).figure("poisson.nu_13");
     optimize_one("strips_" + std::to_string(strips), "a helical open design of " + std::to_string(strips) + " strips",
                  helix, "poisson.nu_13=" + format_short(nu + 0.3), options_.quick ? std::optional<double>() : std::optional<double>(60.0));
+  }
+
+  /// The model, K and 6 eigenpairs (n5b8) of `design` at t*: seconds, and the panels.
+  std::pair<double, std::size_t> modes_seconds(const Design& design, std::string* model_name = nullptr) {
+    std::size_t panels = 0;
+    const StiffnessOptions options = default_stiffness(design);  // n5b8 unless a panel is not convex
+    if (model_name) *model_name = to_string(options.panels);
+    const double seconds = best_seconds(
+        [&] {
+          AssemblyConfiguration c;
+          std::vector<Points> rates;
+          design.assembly.evaluate_rate(design.assembly.t_star(), c, rates);
+          const BarHingeModel model(design, c, options);
+          Points v;
+          model.node_rates(rates, v);
+          const ModeAnalysis a = analyze_modes(model, flatten(v), 6);
+          panels = model.panels().size();
+          keep(&a);
+        },
+        0.0, 2, 2);
+    return {seconds, panels};
+  }
+
+  void mechanics_figures() {
+    // One core: BLAS is Debian's serial OpenBLAS; CHOLMOD's OpenMP parts follow OMP_NUM_THREADS
+    // (docs/performance.md runs the bench with OMP_NUM_THREADS=1).
+    const std::size_t cells = options_.quick ? 3 : 10;
+    {
+      announce("mechanics, the stiffness's modes of arrays");
+      // A 3D lattice (cells x cells tubes along the trajectory), and as a growth check one of a quarter the panels.
+      const std::size_t segments = options_.quick ? 10 : 45;
+      const auto [small, small_panels] = modes_seconds(parallelogram_array(cells, segments / 4));
+      std::string model;
+      const auto [large, large_panels] = modes_seconds(parallelogram_array(cells, segments), &model);
+      add("mechanics.modes_array_s",
+          "the bar-and-hinge model (" + model + "), K and its 6 smallest non-rigid eigenpairs (and the rigid-body count, the "
+          "largest eigenvalue, the alignment) of a " + std::to_string(cells) + " x " + std::to_string(cells) + " array, " +
+              std::to_string(large_panels) + " panels (a 3D lattice of tubes)",
+          large, "s", options_.quick ? std::nullopt : std::optional<double>(2.0));
+      add("mechanics.modes_array_growth",
+          "its time over that of " + std::to_string(small_panels) + " panels (" + format_short(small) + " s), per " +
+              format_short(static_cast<double>(large_panels) / static_cast<double>(small_panels)) + " times the panels",
+          large / small, "x");
+      const Design sheet = open_design_with_panels(options_.quick ? 1000 : 10000);
+      const auto [sheet_seconds, sheet_panels] = modes_seconds(sheet, &model);
+      add("mechanics.modes_sheet_s",
+          "the same for an open P-hedron of " + std::to_string(sheet_panels) + " panels (a sheet: a 2D mesh; " + model + ")",
+          sheet_seconds, "s");
+    }
+    {
+      announce("mechanics, the energy landscape");
+      const Design array = parallelogram_array(cells, options_.quick ? 10 : 45);
+      const Assembly& a = array.assembly;
+      EnergyOptions e;
+      e.rest_t = a.t_star();
+      e.samples = 1000;
+      e.stiffness = default_stiffness(array);
+      std::size_t folds = 0;
+      const double seconds = best_seconds([&] { folds = energy_landscape(array, e).folds; }, 0.0, 2, 2);
+      e.samples = 250;
+      const double quarter = best_seconds([&] { folds = energy_landscape(array, e).folds; }, 0.0, 2, 2);
+      add("mechanics.energy_1000_s",
+          "the exact energy landscape of 1000 samples (E, dE/dt, equilibria, forces) of the same array, " +
+              std::to_string(folds) + " fold springs",
+          seconds, "s", options_.quick ? std::nullopt : std::optional<double>(0.2));
+      add("mechanics.energy_samples_growth", "its time over that of 250 samples (" + format_short(quarter) + " s)",
+          seconds / quarter, "x");
+    }
+    {
+      announce("mechanics, the gap over the interval");
+      ControlPolylines input = parallelogram_array(1, 25).assembly.base().input();
+      const Design tube = single_design(input);
+      std::size_t panels = 0;
+      const double seconds = best_seconds(
+          [&] {
+            const ModesOverInterval m = modes_over_interval(tube, 200, default_stiffness(tube), 6);
+            panels = tube.assembly.topology(0).face_count();
+            keep(&m);
+          },
+          0.0, 2, 2);
+      add("mechanics.gap_200_tube_s",
+          "the 6 smallest modes, tracked, and the gap at 200 configurations of a parallelogram tube of " +
+              std::to_string(panels) + " panels (n5b8)",
+          seconds, "s", options_.quick ? std::nullopt : std::optional<double>(1.0));
+    }
   }
 
   const BenchOptions& options_;
