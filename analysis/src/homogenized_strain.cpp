@@ -47,6 +47,7 @@ HomogenizedStrain::HomogenizedStrain(const Assembly& assembly, MetricsAxes axes)
     count += m.size();
   }
   mean /= static_cast<double>(count);
+  anchor_ = mean;
   reference_.reserve(count);
   Mat3 covariance = Mat3::Zero();
   for (const Points& m : configuration_.members) {
@@ -99,23 +100,20 @@ HomogenizedStrain::HomogenizedStrain(const Assembly& assembly, MetricsAxes axes)
 
 void HomogenizedStrain::evaluate(double t) const { assembly_.evaluate(t, configuration_); }
 
-Mat3 HomogenizedStrain::moment(const AssemblyConfiguration& c) const {
-  Vec3 mean = Vec3::Zero();
-  for (const Points& m : c.members) {
-    for (const Vec3& p : m) mean += p;
-  }
-  mean /= static_cast<double>(reference_.size());
+Mat3 HomogenizedStrain::moment(const std::vector<Points>& members) const {
+  // sum (x - mean x)(X - mean X)^T = sum (x - a)(X - mean X)^T for any a (the X - mean X sum to
+  // zero): one pass, a = the mean at t* keeping the numbers small.
   Mat3 out = Mat3::Zero();
   std::size_t k = 0;
-  for (const Points& m : c.members) {
-    for (const Vec3& p : m) out += (p - mean) * reference_[k++].transpose();
+  for (const Points& m : members) {
+    for (const Vec3& p : m) out.noalias() += (p - anchor_) * reference_[k++].transpose();
   }
   return out;
 }
 
 Mat3 HomogenizedStrain::affine(double t) const {
   evaluate(t);
-  return moment(configuration_) * pseudo_inverse_;
+  return moment(configuration_.members) * pseudo_inverse_;
 }
 
 std::array<std::optional<double>, 3> HomogenizedStrain::stretch(double t) const {
@@ -127,19 +125,31 @@ std::array<std::optional<double>, 3> HomogenizedStrain::stretch(double t) const 
   return out;
 }
 
-HomogenizedStrain::State HomogenizedStrain::at(double t) const {
+HomogenizedStrain::State HomogenizedStrain::state_of(const AssemblyConfiguration& c, const std::vector<Points>* rates) const {
   State s;
+  const Mat3 f = moment(c.members) * pseudo_inverse_;
+  // (the reference is centred: M is linear, so dF/dt = M(dx/dt) C^+)
+  const Mat3 df = rates ? Mat3(moment(*rates) * pseudo_inverse_) : Mat3(Mat3::Zero());
+  for (int k = 0; k < 3; ++k) {
+    if (!defined_[k]) continue;
+    const Vec3 fd = f * axes_[k];
+    const double stretch = fd.norm();
+    s.stretch[k] = stretch;
+    if (rates && stretch > 0.0) s.rate[k] = fd.dot(df * axes_[k]) / (stretch * stretch);
+  }
+  return s;
+}
+
+HomogenizedStrain::State HomogenizedStrain::at(double t) const {
   // F's derivative: M is linear in the positions, so dF/dt = M(dx/dt) C^+ with
   // the exact dx/dt (Assembly::evaluate_rate). At a flexion limit, where it is
   // infinite, the fourth-order central difference next to it, its stencil inside
   // the interval (the rate the plots show at the ends).
-  Mat3 df = Mat3::Zero();
   std::vector<Points> rates;
-  if (assembly_.evaluate_rate(t, configuration_, rates)) {
-    AssemblyConfiguration velocity;
-    velocity.members = std::move(rates);
-    df = moment(velocity) * pseudo_inverse_;  // (the reference is centred: M is linear)
-  } else if (h_ > 0.0) {
+  if (assembly_.evaluate_rate(t, configuration_, rates)) return state_of(configuration_, &rates);
+  State s;
+  Mat3 df = Mat3::Zero();
+  if (h_ > 0.0) {
     const double c = std::clamp(t, std::min(lo_ + 2.0 * h_, 0.5 * (lo_ + hi_)), std::max(hi_ - 2.0 * h_, 0.5 * (lo_ + hi_)));
     const std::array<std::pair<double, double>, 4> stencil{{{-2.0, 1.0}, {-1.0, -8.0}, {1.0, 8.0}, {2.0, -1.0}}};
     for (const auto& [offset, weight] : stencil) df += weight * affine(c + offset * h_);

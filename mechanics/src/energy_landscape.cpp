@@ -1,4 +1,6 @@
 #include "phedra/energy_landscape.h"
+
+#include "fold_kernel.h"
 #include "phedra/report_values.h"
 
 #include "phedra/errors.h"
@@ -8,56 +10,60 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <numbers>
+#include <thread>
 
 namespace phedra {
 
 FoldEnergy::FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options)
-    : design_(design), model_(design, design.assembly.evaluate(rest_t), options) {
+    : design_(design), model_(design, design.assembly.evaluate(rest_t), options),
+      kernel_(std::make_unique<FoldKernel>(model_)) {
   rest_angles_.resize(model_.fold_count());
-  for (std::size_t h = 0; h < rest_angles_.size(); ++h) rest_angles_[h] = model_.angle(h, model_.positions());
+  weight_.resize(model_.fold_count());
+  for (std::size_t h = 0; h < rest_angles_.size(); ++h) {
+    rest_angles_[h] = model_.angle(h, model_.positions());
+    weight_[h] = model_.hinges()[h].stiffness * model_.hinges()[h].length;
+  }
 }
 
-void FoldEnergy::angles_at(const Points& x, std::vector<double>& angles, const std::vector<double>& near) const {
+FoldEnergy::~FoldEnergy() = default;
+
+FoldEnergy::Value FoldEnergy::evaluate(double t, const std::vector<double>& near, std::vector<double>& angles,
+                                       Scratch& s) const {
+  s.finite = design_.assembly.evaluate_rate(t, s.configuration, s.rates);
+  model_.node_positions(s.configuration, s.x);
+  if (s.finite) model_.node_rates(s.rates, s.v);
+  const std::size_t n = rest_angles_.size();
+  for (auto* a : {&s.theta, &s.rate, &s.y, &s.x_work}) a->resize(n);
+  kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data());
   const std::vector<double>& reference = near.empty() ? rest_angles_ : near;
-  angles.resize(rest_angles_.size());
-  for (std::size_t h = 0; h < angles.size(); ++h) angles[h] = continuous_angle(model_.angle(h, x), reference[h]);
+  angles.resize(n);
+  const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
+  Value out;
+  double de = 0.0;
+  for (std::size_t h = 0; h < n; ++h) {
+    const double theta = s.theta[h] + turn * std::nearbyint((reference[h] - s.theta[h]) * per_turn);  // continuous_angle
+    angles[h] = theta;
+    const double d = theta - rest_angles_[h];
+    out.energy += 0.5 * weight_[h] * d * d;
+    de += weight_[h] * d * s.rate[h];
+  }
+  if (s.finite) out.rate = de;
+  return out;
 }
 
 double FoldEnergy::energy(double t, std::vector<double>& angles, const std::vector<double>& near) const {
-  design_.assembly.evaluate(t, configuration_);
-  model_.node_positions(configuration_, nodes_);
-  angles_at(nodes_, angles, near);
-  double e = 0.0;
-  for (std::size_t h = 0; h < angles.size(); ++h) {
-    const Hinge& hinge = model_.hinges()[h];
-    const double d = angles[h] - rest_angles_[h];
-    e += 0.5 * hinge.stiffness * hinge.length * d * d;
-  }
-  return e;
+  Scratch scratch;
+  return evaluate(t, near, angles, scratch).energy;
 }
 
 std::pair<double, std::optional<double>> FoldEnergy::energy_and_rate(double t, std::vector<double>& angles,
                                                                     const std::vector<double>& near) const {
-  std::vector<Points> rates;
-  const bool finite = design_.assembly.evaluate_rate(t, configuration_, rates);
-  model_.node_positions(configuration_, nodes_);
-  angles_at(nodes_, angles, near);
-  Points v;
-  if (finite) model_.node_rates(rates, v);
-  double e = 0.0, de = 0.0;
-  for (std::size_t h = 0; h < angles.size(); ++h) {
-    const Hinge& hinge = model_.hinges()[h];
-    const double d = angles[h] - rest_angles_[h];
-    const double k = hinge.stiffness * hinge.length;
-    e += 0.5 * k * d * d;
-    if (!finite || d == 0.0) continue;
-    const std::array<Vec3, 4> g = hinge_angle_gradient(hinge_nodes(hinge, nodes_));
-    double rate = 0.0;
-    for (int n = 0; n < 4; ++n) rate += g[n].dot(v[hinge.nodes[n]]);
-    de += k * d * rate;
-  }
-  return {e, finite ? std::optional<double>(de) : std::nullopt};
+  Scratch scratch;
+  const Value v = evaluate(t, near, angles, scratch);
+  return {v.energy, v.rate};
 }
 
 bool EnergyLandscape::bistable() const {
@@ -75,14 +81,44 @@ struct Point {
 
 /// E and dE/dt at `t`, the angles carried from `from` continuously: steps of at
 /// most half a radian for any fold, halving the step where one turns faster.
-Point carried(const FoldEnergy& f, const Point& from, double t, int depth = 0) {
+/// `scratch` holds the configuration at `t` after it.
+Point carried(const FoldEnergy& f, const Point& from, double t, FoldEnergy::Scratch& scratch, int depth = 0) {
   Point p{t, 0.0, std::nullopt, {}};
-  std::tie(p.energy, p.rate) = f.energy_and_rate(t, p.angles, from.angles);
+  const FoldEnergy::Value v = f.evaluate(t, from.angles, p.angles, scratch);
+  p.energy = v.energy;
+  p.rate = v.rate;
   double turn = 0.0;
   for (std::size_t h = 0; h < p.angles.size(); ++h) turn = std::max(turn, std::abs(p.angles[h] - from.angles[h]));
   if (turn <= 0.5 || depth >= 30) return p;
-  const Point middle = carried(f, from, 0.5 * (from.t + t), depth + 1);
-  return carried(f, middle, t, depth + 1);
+  const Point middle = carried(f, from, 0.5 * (from.t + t), scratch, depth + 1);
+  return carried(f, middle, t, scratch, depth + 1);
+}
+
+/// Runs `left` and `right` (on two threads for large work, not in WebAssembly).
+void both(bool large, const std::function<void()>& left, const std::function<void()>& right) {
+#ifndef __EMSCRIPTEN__
+  if (large) {
+    std::exception_ptr failure;
+    std::thread other([&] {
+      try {
+        right();
+      } catch (...) {
+        failure = std::current_exception();
+      }
+    });
+    try {
+      left();
+    } catch (...) {
+      other.join();
+      throw;
+    }
+    other.join();
+    if (failure) std::rethrow_exception(failure);
+    return;
+  }
+#endif
+  left();
+  right();
 }
 
 }  // namespace
@@ -109,22 +145,35 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   std::sort(ts.begin(), ts.end());
   ts.erase(std::unique(ts.begin(), ts.end()), ts.end());
   const std::size_t rest = static_cast<std::size_t>(std::find(ts.begin(), ts.end(), options.rest_t) - ts.begin());
-  std::vector<Point> points(ts.size());
-  points[rest] = {options.rest_t, 0.0, std::nullopt, fold.rest_angles()};
-  std::tie(points[rest].energy, points[rest].rate) = fold.energy_and_rate(options.rest_t, points[rest].angles);
-  for (std::size_t i = rest + 1; i < ts.size(); ++i) points[i] = carried(fold, points[i - 1], ts[i]);
-  for (std::size_t i = rest; i-- > 0;) points[i] = carried(fold, points[i + 1], ts[i]);
 
-  // The lengths of `phedra metrics` and the forces that hold them.
+  // The lengths of `phedra metrics` and the forces that hold them, from the configuration each evaluation leaves.
   const HomogenizedStrain strain(a, options.axes);
   out.axes = strain.axes();
   const std::array<double, 3> at_star = axis_extents(a.evaluate(a.t_star()).members, out.axes);
-  for (const Point& p : points) {
-    EnergySample s;
+  // Each sample keeps E, dE/dt and its folds' turns (theta continuous = raw + 2 pi turns):
+  // its angles, when a bracket needs them, by evaluating it again (a byte a fold, not eight).
+  struct Kept {
+    double t = 0.0, energy = 0.0;
+    std::optional<double> rate;
+    std::vector<std::int8_t> turns;
+  };
+  std::vector<Kept> points(ts.size());
+  out.samples.resize(ts.size());
+  auto record = [&](std::size_t i, const Point& p, const FoldEnergy::Scratch& scratch) {
+    Kept& kept = points[i];
+    kept.t = p.t;
+    kept.energy = p.energy;
+    kept.rate = p.rate;
+    kept.turns.resize(p.angles.size());
+    const double turn = 2.0 * std::numbers::pi;
+    for (std::size_t h = 0; h < p.angles.size(); ++h) {
+      kept.turns[h] = static_cast<std::int8_t>(std::nearbyint((p.angles[h] - scratch.theta[h]) * (1.0 / turn)));
+    }
+    EnergySample& s = out.samples[i];
     s.t = p.t;
     s.energy = p.energy;
     s.rate = p.rate;
-    const HomogenizedStrain::State state = strain.at(p.t);
+    const HomogenizedStrain::State state = strain.state_of(scratch.configuration, scratch.finite ? &scratch.rates : nullptr);
     for (int k = 0; k < 3; ++k) {
       if (!state.stretch[k]) continue;
       s.length[k] = at_star[k] * *state.stretch[k];
@@ -132,9 +181,41 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
       const double d_length = *s.length[k] * *state.rate[k];
       if (std::abs(d_length) * (hi - lo) > 1e-9 * *s.length[k]) s.force[k] = *p.rate / d_length;
     }
-    out.largest_energy = std::max(out.largest_energy, p.energy);
-    out.samples.push_back(s);
+  };
+  Point at_rest{options.rest_t, 0.0, std::nullopt, {}};
+  {
+    FoldEnergy::Scratch scratch;
+    const FoldEnergy::Value v = fold.evaluate(options.rest_t, fold.rest_angles(), at_rest.angles, scratch);
+    at_rest.energy = v.energy;
+    at_rest.rate = v.rate;
+    record(rest, at_rest, scratch);
   }
+  // Outwards from the rest state, each side on its own (a thread each for large models).
+  const bool large = static_cast<double>(out.folds) * static_cast<double>(ts.size()) > 2e5;
+  auto walk = [&](int direction) {
+    FoldEnergy::Scratch scratch;
+    Point previous = at_rest;
+    for (std::size_t i = rest; direction > 0 ? i + 1 < ts.size() : i > 0;) {
+      i = direction > 0 ? i + 1 : i - 1;
+      previous = carried(fold, previous, ts[i], scratch);
+      record(i, previous, scratch);
+    }
+  };
+  both(large, [&] { walk(1); }, [&] { walk(-1); });
+  for (const Kept& p : points) out.largest_energy = std::max(out.largest_energy, p.energy);
+  FoldEnergy::Scratch scratch;  // the equilibria's
+  // Sample i with its angles (evaluated again: once for the raw angles, once carried from them turned).
+  auto restore = [&](std::size_t i) {
+    Point p{points[i].t, 0.0, std::nullopt, {}};
+    fold.evaluate(p.t, fold.rest_angles(), p.angles, scratch);
+    const double turn = 2.0 * std::numbers::pi;
+    std::vector<double> near(p.angles.size());
+    for (std::size_t h = 0; h < near.size(); ++h) near[h] = scratch.theta[h] + turn * points[i].turns[h];
+    const FoldEnergy::Value v = fold.evaluate(p.t, near, p.angles, scratch);
+    p.energy = v.energy;
+    p.rate = v.rate;
+    return p;
+  };
 
   // Equilibria: the rest state, and every change of sign of dE/dt between samples.
   const double resolution = 1e-12 * (hi - lo);
@@ -143,41 +224,47 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   // interval away (closer, rounding in the positions, about 1e-15 of the model
   // size and more where the motion is ill-conditioned, can outweigh the rate).
   const double step = 1e-6 * (hi - lo);
-  auto beside = [&](std::size_t i, double towards) {
-    const bool moved = i == rest || !points[i].rate;
-    return moved ? carried(fold, points[i], points[i].t + (towards > points[i].t ? step : -step)) : points[i];
+  // The sign of dE/dt at sample i as seen from the pair's other end (beside it when needed).
+  auto sign_beside = [&](std::size_t i, double towards) -> std::optional<double> {
+    if (i != rest && points[i].rate) return points[i].rate;
+    return carried(fold, i == rest ? at_rest : restore(i), points[i].t + (towards > points[i].t ? step : -step), scratch).rate;
   };
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (i == rest) out.equilibria.push_back({options.rest_t, true, points[i].energy, true});
-    const Point left = beside(i, points[i + 1].t);
-    const Point right = beside(i + 1, points[i].t);
-    if (!left.rate || !right.rate) continue;
-    const bool rises = *left.rate < 0.0 && *right.rate > 0.0, falls = *left.rate > 0.0 && *right.rate < 0.0;
+    const std::optional<double> left_rate = sign_beside(i, points[i + 1].t);
+    const std::optional<double> right_rate = sign_beside(i + 1, points[i].t);
+    if (!left_rate || !right_rate) continue;
+    const bool rises = *left_rate < 0.0 && *right_rate > 0.0, falls = *left_rate > 0.0 && *right_rate < 0.0;
     if (!rises && !falls) {
-      if (*right.rate == 0.0 && i + 2 < points.size() && points[i + 2].rate) {
+      if (*right_rate == 0.0 && i + 2 < points.size() && points[i + 2].rate) {
         const double after = *points[i + 2].rate;
-        if ((*left.rate < 0.0 && after > 0.0) || (*left.rate > 0.0 && after < 0.0)) {
-          out.equilibria.push_back({right.t, *left.rate < 0.0, right.energy, false});
+        if ((*left_rate < 0.0 && after > 0.0) || (*left_rate > 0.0 && after < 0.0)) {
+          out.equilibria.push_back({points[i + 1].t, *left_rate < 0.0, points[i + 1].energy, false});
         }
       }
       continue;
     }
-    Point a_side = left;
-    double b = right.t;
+    // A change of sign: bisect from the left end, its angles restored.
+    Point a_side = i == rest ? at_rest : restore(i);
+    if (i == rest || !points[i].rate) {
+      a_side = carried(fold, a_side, a_side.t + (points[i + 1].t > a_side.t ? step : -step), scratch);
+    }
+    const bool falling_left = *left_rate < 0.0;
+    double b = points[i + 1].t;
     while (b - a_side.t > resolution) {
-      const Point m = carried(fold, a_side, 0.5 * (a_side.t + b));
+      const Point m = carried(fold, a_side, 0.5 * (a_side.t + b), scratch);
       if (!m.rate || *m.rate == 0.0) {
         a_side = m;
         b = m.t;
         break;
       }
-      if ((*m.rate < 0.0) == (*left.rate < 0.0)) {
+      if ((*m.rate < 0.0) == falling_left) {
         a_side = m;
       } else {
         b = m.t;
       }
     }
-    const Point root = carried(fold, a_side, 0.5 * (a_side.t + b));
+    const Point root = carried(fold, a_side, 0.5 * (a_side.t + b), scratch);
     out.equilibria.push_back({root.t, rises, root.energy, false});
   }
   if (rest + 1 == points.size()) out.equilibria.push_back({options.rest_t, true, points[rest].energy, true});

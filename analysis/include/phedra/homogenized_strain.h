@@ -51,6 +51,9 @@ class HomogenizedStrain {
   std::array<std::optional<double>, 3> stretch(double t) const;
   /// Stretches and their rates at t (t in the flexion interval).
   State at(double t) const;
+  /// The same from a configuration and its exact rates (Assembly::evaluate_rate;
+  /// none: the stretches only). Const and touches nothing: safe on several threads.
+  State state_of(const AssemblyConfiguration& c, const std::vector<Points>* rates) const;
   /// The positions of the last evaluation (at(t) ends with t's).
   const AssemblyConfiguration& configuration() const { return configuration_; }
 
@@ -59,13 +62,14 @@ class HomogenizedStrain {
 
  private:
   /// M(x) = sum (x - mean x)(X - mean X)^T over the vertices, X at t*.
-  Mat3 moment(const AssemblyConfiguration& c) const;
+  Mat3 moment(const std::vector<Points>& members) const;
   void evaluate(double t) const;
 
   const Assembly& assembly_;
   std::array<Vec3, 3> axes_;
   std::array<bool, 3> defined_{};
   Points reference_;            ///< X - mean X, every member's vertices in order
+  Vec3 anchor_ = Vec3::Zero();  ///< mean X
   Mat3 pseudo_inverse_;         ///< of sum (X - mean)(X - mean)^T
   double h_ = 0.0, lo_ = 0.0, hi_ = 0.0;
   mutable AssemblyConfiguration configuration_;

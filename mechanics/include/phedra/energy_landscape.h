@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -69,26 +70,44 @@ struct EnergyLandscape {
 /// InvalidInputError("--rest-t") outside the interval, or for samples < 2.
 EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& options);
 
+class FoldKernel;
+
 /// The energy landscape's evaluation at one t: the fold springs of the model
-/// at the rest state, their angles kept continuous. For tests and optimize.
+/// at the rest state, their angles kept continuous. Const: safe on several
+/// threads, each with its own Scratch.
 class FoldEnergy {
  public:
   FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options);
-  /// E at t, the angles continuous from `near` (the angles at a t close by; empty: the rest angles).
+  ~FoldEnergy();
+
+  /// What one evaluation needs: the configuration and rates at t (read after it).
+  struct Scratch {
+    AssemblyConfiguration configuration;
+    std::vector<Points> rates;
+    bool finite = false;  ///< the rates exist (not at a flexion limit)
+    Points x, v;
+    std::vector<double> theta, rate, y, x_work;
+  };
+  struct Value {
+    double energy = 0.0;
+    std::optional<double> rate;  ///< dE/dt, none at a flexion limit
+  };
+  /// E and dE/dt at t; `angles` gets the folds' angles continuous from `near`
+  /// (the angles at a t close by; empty: the rest angles).
+  Value evaluate(double t, const std::vector<double>& near, std::vector<double>& angles, Scratch& scratch) const;
+
+  /// The same with a scratch of its own (tests).
   double energy(double t, std::vector<double>& angles, const std::vector<double>& near = {}) const;
-  /// E and dE/dt at t (dE/dt none at a flexion limit).
   std::pair<double, std::optional<double>> energy_and_rate(double t, std::vector<double>& angles,
                                                            const std::vector<double>& near = {}) const;
   const std::vector<double>& rest_angles() const { return rest_angles_; }
   const BarHingeModel& model() const { return model_; }
 
  private:
-  void angles_at(const Points& x, std::vector<double>& angles, const std::vector<double>& near) const;
   const Design& design_;
   BarHingeModel model_;
-  std::vector<double> rest_angles_;
-  mutable AssemblyConfiguration configuration_;
-  mutable Points nodes_;
+  std::unique_ptr<FoldKernel> kernel_;
+  std::vector<double> rest_angles_, weight_;  ///< weight: k L of each fold
 };
 
 }  // namespace phedra
