@@ -1,4 +1,4 @@
-// phedra bench [--json] [--quick] [--max-vertices N] [-o FILE]
+// phedra bench [--json] [--quick] [--max-vertices N] [--only GROUP]... [-o FILE]
 
 #include "commands.h"
 #include "support.h"
@@ -32,6 +32,10 @@ void add_bench_command(CLI::App& app, Context& context) {
                 "then not enforced)");
   sub->add_option("--max-vertices", options->bench.max_vertices, "Largest evaluate(t) case (default 10^7)")
       ->check(CLI::Range(std::size_t{1000}, std::size_t{100000000}));
+  sub->add_option("--only", options->bench.only,
+                  "Only these groups of figures (repeatable): memory, evaluate, accuracy, interval, closure, gltf, "
+                  "repair, optimize, mechanics")
+      ->check(CLI::IsMember(bench::bench_groups()));
   sub->add_option("-o,--output", options->output, "Output file (default: standard output)");
   sub->callback([options, &context] {
     const bool show_progress = !options->json || !options->output.empty();

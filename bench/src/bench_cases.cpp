@@ -55,6 +55,25 @@ Design parallelogram_array(std::size_t cells, std::size_t segments) {
                 std::to_string(cells) + " x " + std::to_string(cells) + " grid of parallelogram cells"};
 }
 
+Design mechanics_array(std::size_t cells, std::size_t segments) {
+  ControlPolylines base;
+  for (std::size_t i = 0; i <= segments; ++i) {
+    const double a = 0.08 * static_cast<double>(i);
+    base.trajectory.push_back(Vec3(5.0 * std::cos(a), 5.0 * std::sin(a), 0.05 + 0.3 * static_cast<double>(i)));
+    base.directions.push_back(Vec3(std::cos(a + 0.05), std::sin(a + 0.05), 0));
+  }
+  std::vector<double> u, w;
+  for (std::size_t k = 0; k <= cells; ++k) {
+    u.push_back(-2.0 + 0.2 * static_cast<double>(k));
+    w.push_back(3.0 - 0.2 * static_cast<double>(k));
+  }
+  base.apex_heights = {u[0], w[0], u[1], w[1], u[0], w[0]};
+  base.signs.assign(4, Sign::plus);
+  TubeGrid grid = make_parallelogram_grid(base, u, w);
+  return Design{std::move(grid.assembly), false,
+                std::to_string(cells) + " x " + std::to_string(cells) + " grid of parallelogram cells"};
+}
+
 Design open_design_with_panels(std::size_t panels) {
   const std::size_t n = 99;  // 100 faces a strip with the boundary columns
   const std::size_t profiles = std::max<std::size_t>(2, panels / (n + 1) + 1);

@@ -181,7 +181,7 @@ ModeAnalysis analyze_modes(const BarHingeModel& model, const std::optional<Eigen
     small = 0;
     while (small < wanted && pairs.values(static_cast<Eigen::Index>(small)) < threshold) ++small;
     if (wanted - small >= modes || wanted == capacity) break;
-    wanted = std::min(capacity, small + modes);
+    wanted = std::min(capacity, std::max(2 * wanted, small + modes));  // doubling: few runs however many
   }
   a.rigid_body_modes = 6 + small;
   const Eigen::Index first = static_cast<Eigen::Index>(small);

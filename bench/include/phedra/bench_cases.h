@@ -29,6 +29,10 @@ ControlPolylines open_input_with_vertices(std::size_t vertices, bool mixed_signs
 Design parallelogram_array(std::size_t cells, std::size_t segments);
 
 /// An open P-hedron design with about `panels` panels (faces).
+/// tests/data/grid-10x10.json's array (cells x cells parallelogram cells on a
+/// helix of `segments`, every panel convex): the mechanics' figures (n5b8).
+Design mechanics_array(std::size_t cells, std::size_t segments);
+
 Design open_design_with_panels(std::size_t panels);
 
 /// The default preset as it was before issue 13 made it buildable (70 panels,

@@ -27,7 +27,13 @@ struct BenchOptions {
   bool quick = false;
   /// Largest evaluate case (10^7 by default).
   std::size_t max_vertices = 10'000'000;
+  /// Only the groups named (memory, evaluate, accuracy, interval, closure, gltf,
+  /// repair, optimize, mechanics); empty: all.
+  std::vector<std::string> only;
 };
+
+/// The group names BenchOptions::only takes.
+const std::vector<std::string>& bench_groups();
 
 struct BenchReport {
   bool quick = false;
