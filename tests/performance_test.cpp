@@ -118,7 +118,15 @@ TEST_CASE("phedra bench --quick --json -o FILE writes the report, bad options ar
   const nlohmann::json j = nlohmann::json::parse(in);
   CHECK(j["figures"].size() > 10);
   CHECK(err.str().find("bench: evaluate(t)") != std::string::npos);
+  bool mechanics = false;
+  for (const nlohmann::json& f : j["figures"]) mechanics = mechanics || f["id"] == "mechanics.gap_200_tube_s";
+  CHECK(mechanics);
   std::filesystem::remove(file);
+  std::ostringstream out3, err3;
+  CHECK(cli::run({"bench", "--quick", "--only", "interval", "--json"}, out3, err3) == 0);
+  for (const nlohmann::json& f : nlohmann::json::parse(out3.str())["figures"]) CHECK(f["id"].get<std::string>().rfind("interval.", 0) == 0);
+  std::ostringstream out4, err4;
+  CHECK(cli::run({"bench", "--only", "everything"}, out4, err4) == 2);
   std::ostringstream out2, err2;
   CHECK(cli::run({"bench", "--max-vertices", "10"}, out2, err2) == 2);
   CHECK(err2.str().find("max-vertices") != std::string::npos);
