@@ -295,19 +295,7 @@ void build_morph(tinygltf::Model& model, BufferBuilder& buffer, const Design& de
   weights.sparse.values.bufferView = value_view;
   weights.sparse.values.byteOffset = 0;
   model.accessors.push_back(weights);
-  tinygltf::Animation animation;
-  animation.name = "fold";
-  tinygltf::AnimationSampler sampler;
-  sampler.input = time_accessor;
-  sampler.output = static_cast<int>(model.accessors.size()) - 1;
-  sampler.interpolation = "LINEAR";
-  animation.samplers.push_back(sampler);
-  tinygltf::AnimationChannel channel;
-  channel.sampler = 0;
-  channel.target_node = 0;
-  channel.target_path = "weights";
-  animation.channels.push_back(channel);
-  model.animations.push_back(animation);
+  add_weights_animation(model, "fold", time_accessor, static_cast<int>(model.accessors.size()) - 1);
 }
 
 }  // namespace phedra::gltf

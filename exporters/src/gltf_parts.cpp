@@ -22,6 +22,22 @@ tinygltf::Value to_value(const nlohmann::json& j) {
   return tinygltf::Value();
 }
 
+void add_weights_animation(tinygltf::Model& model, const std::string& name, int times, int weights) {
+  tinygltf::Animation animation;
+  animation.name = name;
+  tinygltf::AnimationSampler sampler;
+  sampler.input = times;
+  sampler.output = weights;
+  sampler.interpolation = "LINEAR";
+  animation.samplers.push_back(sampler);
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 0;
+  channel.target_path = "weights";
+  animation.channels.push_back(channel);
+  model.animations.push_back(animation);
+}
+
 float checked(double x) {
   const float f = static_cast<float>(x);
   if (!std::isfinite(f)) throw Error(ExitCode::internal, "refusing to write a non-finite number to glTF");

@@ -59,6 +59,9 @@ class BufferBuilder {
 /// JSON as a glTF extras value (numbers that are whole stay integers).
 tinygltf::Value to_value(const nlohmann::json& j);
 
+/// A LINEAR animation `name` of node 0's morph weights: `times`, `weights` accessors.
+void add_weights_animation(tinygltf::Model& model, const std::string& name, int times, int weights);
+
 /// x as float32; Error(internal) rather than write a non-finite number.
 float checked(double x);
 

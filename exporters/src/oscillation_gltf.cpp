@@ -100,19 +100,7 @@ std::string oscillation_gltf_bytes(const OscillationScene& scene, bool binary) {
     const int weight_view = buffer.add_view(weights, 0);
     const int weight_accessor =
         buffer.add_accessor(weight_view, 0, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, weights.size());
-    tinygltf::Animation animation;
-    animation.name = "modes";
-    tinygltf::AnimationSampler sampler;
-    sampler.input = time_accessor;
-    sampler.output = weight_accessor;
-    sampler.interpolation = "LINEAR";
-    animation.samplers.push_back(sampler);
-    tinygltf::AnimationChannel channel;
-    channel.sampler = 0;
-    channel.target_node = 0;
-    channel.target_path = "weights";
-    animation.channels.push_back(channel);
-    model.animations.push_back(animation);
+    add_weights_animation(model, "modes", time_accessor, weight_accessor);
   }
 
   nlohmann::json phedra = scene.extras;
