@@ -6,7 +6,8 @@
 # software WebGL renderer bench/designer.mjs measures; Blender imports and plays
 # the glTF exports in tests/blender; its glTF importer needs numpy, which
 # Debian's blender package does not depend on; pybind11 builds the Python module,
-# pytest runs its tests and matplotlib draws the example's plot), then the npm packages of web/
+# pytest runs its tests and matplotlib draws the example's plot; Spectra, CHOLMOD (SuiteSparse) and
+# serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
