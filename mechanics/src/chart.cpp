@@ -15,8 +15,8 @@
 namespace phedra {
 namespace {
 
-constexpr double width = 960.0, panel_height = 300.0, left = 92.0, right = 250.0, top = 78.0, gap = 70.0,
-                 bottom = 56.0;
+constexpr double page_width = 960.0, panel_height = 300.0, margin_left = 92.0, margin_right = 250.0, margin_top = 78.0, panel_gap = 70.0,
+                 margin_bottom = 56.0;
 
 const double palette[][3] = {{0.12, 0.47, 0.71}, {0.84, 0.15, 0.16}, {0.17, 0.63, 0.17}, {0.58, 0.40, 0.74},
                              {1.00, 0.50, 0.05}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.50, 0.50, 0.50},
@@ -65,10 +65,10 @@ std::string power_label(int p) {
 }
 
 void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double y0, bool last) {
-  const double w = width - left - right, h = panel_height;
+  const double w = page_width - margin_left - margin_right, h = panel_height;
   const double x_lo = panel.x_range ? panel.x_range->first : chart.x_lo;
   const double x_hi = panel.x_range ? panel.x_range->second : chart.x_hi;
-  auto sx = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * w; };
+  auto sx = [&](double x) { return margin_left + (x - x_lo) / (x_hi - x_lo) * w; };
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   auto take = [&](double v) {
     if (!std::isfinite(v) || (panel.log_y && !(v > 0.0))) return;
@@ -109,26 +109,26 @@ void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double
   cairo_set_source_rgb(cr, 0.92, 0.92, 0.92);
   for (const auto& [v, label] : ticks) {
     const double y = y0 + h - (v - ylo) / (yhi - ylo) * h;
-    cairo_move_to(cr, left, y), cairo_line_to(cr, left + w, y);
+    cairo_move_to(cr, margin_left, y), cairo_line_to(cr, margin_left + w, y);
   }
   const Ticks xt = round_ticks(x_lo, x_hi, 8);
   for (double v : xt.values) cairo_move_to(cr, sx(v), y0), cairo_line_to(cr, sx(v), y0 + h);
   cairo_stroke(cr);
   cairo_set_source_rgb(cr, 0.2, 0.2, 0.2);
-  cairo_rectangle(cr, left, y0, w, h);
+  cairo_rectangle(cr, margin_left, y0, w, h);
   cairo_stroke(cr);
-  for (const auto& [v, label] : ticks) text(cr, label, left - 8, y0 + h - (v - ylo) / (yhi - ylo) * h + 4, 12, 1.0);
+  for (const auto& [v, label] : ticks) text(cr, label, margin_left - 8, y0 + h - (v - ylo) / (yhi - ylo) * h + 4, 12, 1.0);
   for (std::size_t i = 0; i < xt.values.size(); ++i) text(cr, xt.labels[i], sx(xt.values[i]), y0 + h + 17, 12, 0.5);
   if (panel.x_range) {
-    text(cr, panel.x_label, left + w / 2, y0 + h + 38, 13, 0.5);
+    text(cr, panel.x_label, margin_left + w / 2, y0 + h + 38, 13, 0.5);
   } else if (last) {
-    text(cr, chart.x_label, left + w / 2, y0 + h + 38, 13, 0.5);
+    text(cr, chart.x_label, margin_left + w / 2, y0 + h + 38, 13, 0.5);
   }
-  text(cr, panel.title, left, y0 - 10, 14, 0.0, true);
-  text(cr, panel.y_label, left - 62, y0 + h / 2, 13, 0.5, false, true);
+  text(cr, panel.title, margin_left, y0 - 10, 14, 0.0, true);
+  text(cr, panel.y_label, margin_left - 62, y0 + h / 2, 13, 0.5, false, true);
   // Vertical lines.
   cairo_save(cr);
-  cairo_rectangle(cr, left, y0, w, h);
+  cairo_rectangle(cr, margin_left, y0, w, h);
   cairo_clip(cr);
   for (const ChartLine& l : panel.lines) {
     cairo_set_source_rgb(cr, 0.45, 0.45, 0.45);
@@ -176,7 +176,7 @@ void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double
   cairo_restore(cr);
   // Legend on the right.
   double ly = y0 + 8;
-  const double lx = left + w + 18;
+  const double lx = margin_left + w + 18;
   for (const ChartSeries& s : panel.series) {
     if (s.label.empty()) continue;
     colour(cr, s.colour);
@@ -208,19 +208,19 @@ void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double
 }
 
 double chart_height(const Chart& chart) {
-  return top + static_cast<double>(chart.panels.size()) * (panel_height + gap) - gap + bottom;
+  return margin_top + static_cast<double>(chart.panels.size()) * (panel_height + panel_gap) - panel_gap + margin_bottom;
 }
 
 void draw(cairo_t* cr, const Chart& chart) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
   cairo_set_source_rgb(cr, 0.05, 0.05, 0.05);
-  text(cr, chart.title, left, 30, 17, 0.0, true);
+  text(cr, chart.title, margin_left, 30, 17, 0.0, true);
   cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
-  text(cr, chart.subtitle, left, 52, 12.5);
+  text(cr, chart.subtitle, margin_left, 52, 12.5);
   for (std::size_t p = 0; p < chart.panels.size(); ++p) {
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    draw_panel(cr, chart, chart.panels[p], top + static_cast<double>(p) * (panel_height + gap) + 18,
+    draw_panel(cr, chart, chart.panels[p], margin_top + static_cast<double>(p) * (panel_height + panel_gap) + 18,
                p + 1 == chart.panels.size());
   }
 }
@@ -238,7 +238,7 @@ void check(cairo_status_t status) {
 
 std::string chart_svg(const Chart& chart) {
   std::string out;
-  cairo_surface_t* surface = cairo_svg_surface_create_for_stream(append, &out, width, chart_height(chart));
+  cairo_surface_t* surface = cairo_svg_surface_create_for_stream(append, &out, page_width, chart_height(chart));
   cairo_t* cr = cairo_create(surface);
   draw(cr, chart);
   const cairo_status_t status = cairo_status(cr);
@@ -251,7 +251,7 @@ std::string chart_svg(const Chart& chart) {
 
 std::string chart_png(const Chart& chart) {
   const double scale = 1.5;  // crisp at the size people look at it
-  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(width * scale),
+  cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, static_cast<int>(page_width * scale),
                                                         static_cast<int>(chart_height(chart) * scale));
   cairo_t* cr = cairo_create(surface);
   cairo_scale(cr, scale, scale);

@@ -271,11 +271,11 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
 
   // Bistable: the barrier to the nearest other minimum, both ways.
   if (out.bistable()) {
-    const auto at_rest = std::find_if(out.equilibria.begin(), out.equilibria.end(), [](const Equilibrium& e) { return e.rest; });
+    const auto rest_state = std::find_if(out.equilibria.begin(), out.equilibria.end(), [](const Equilibrium& e) { return e.rest; });
     std::optional<std::pair<double, double>> best;  // (distance in t, barrier)
     for (auto it = out.equilibria.begin(); it != out.equilibria.end(); ++it) {
       if (!it->minimum || it->rest) continue;
-      const auto from = std::min(it, at_rest), to = std::max(it, at_rest);
+      const auto from = std::min(it, rest_state), to = std::max(it, rest_state);
       double peak = -std::numeric_limits<double>::infinity();
       for (auto e = from; e != to; ++e) {
         if (!e->minimum) peak = std::max(peak, e->energy);
@@ -283,7 +283,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
       const double distance = std::abs(it->t - options.rest_t);
       if (std::isfinite(peak) && (!best || distance < best->first)) {
         best = {distance, peak};
-        out.barrier = peak - at_rest->energy;
+        out.barrier = peak - rest_state->energy;
         out.reverse_barrier = peak - it->energy;
       }
     }

@@ -4,7 +4,7 @@
 #if defined(__x86_64__) && !defined(__EMSCRIPTEN__)
 #include <immintrin.h>
 // glibc's vector atan2 (libmvec, GLIBC_2.35): four doubles, AVX2; within 4 ulp.
-extern "C" __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
+extern "C" __attribute__((target("avx2,fma"))) __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
 #define PHEDRA_VECTOR_ATAN2 1
 #endif
 
