@@ -40,10 +40,10 @@ for m in "${modules[@]}"; do
   sources+=("$out/unity/$m.cpp")
 done
 unity exporters "${exporter_sources[@]}"
-# Mechanics without its plots (cairo) and with Eigen's own Cholesky (no CHOLMOD): the energy landscape.
+# Mechanics without its plots (cairo), its AVX2 atan2 and CHOLMOD (Eigen's own Cholesky): the energy landscape.
 mechanics_sources=()
 for f in mechanics/src/*.cpp; do
-  case "$f" in *chart*) ;; *) mechanics_sources+=("$f") ;; esac
+  case "$f" in *chart*|*_avx2*) ;; *) mechanics_sources+=("$f") ;; esac
 done
 unity mechanics "${mechanics_sources[@]}"
 sources+=("$out/unity/mechanics.cpp" "$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)

@@ -10,15 +10,19 @@
 #include "phedra/stiffness_modes.h"
 #include "phedra/energy_landscape.h"
 #include "support/cli_run.h"
+#include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 
 #include <Eigen/Dense>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
+#include <vector>
 
 using namespace phedra;
 
@@ -202,6 +206,27 @@ TEST_CASE("the model's counts and rules: triangles, shared walls, T-junctions, n
     if (g.hinges()[h].kind == HingeKind::bend) CHECK(std::abs(theta - pi) < 1e-9);
     CHECK(theta >= 0.0);
     CHECK(theta < 2 * pi);
+  }
+}
+
+TEST_CASE("the fold angles' atan2 in bulk equals std::atan2 in every quadrant and tail length", "[mechanics]") {
+  // atan2_many takes glibc's vector atan2 (four at a time) where the processor has
+  // AVX2: a wrong calling convention there gives garbage, not a small error.
+  std::mt19937_64 rng(36);
+  for (std::size_t n = 0; n <= 41; ++n) {
+    std::vector<double> y(n), x(n), out(n, -7.0);
+    for (std::size_t h = 0; h < n; ++h) {
+      const double r = std::pow(10.0, test::uniform(rng, -8, 8));
+      const double a = test::uniform(rng, -pi, pi);
+      y[h] = r * std::sin(a);
+      x[h] = h % 7 == 3 ? 0.0 : r * std::cos(a);
+    }
+    atan2_many(y.data(), x.data(), out.data(), n);
+    for (std::size_t h = 0; h < n; ++h) {
+      const double exact = std::atan2(y[h], x[h]);
+      INFO("n " << n << " h " << h << " y " << y[h] << " x " << x[h]);
+      CHECK(std::abs(out[h] - exact) <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(exact)));
+    }
   }
 }
 

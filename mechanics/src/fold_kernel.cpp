@@ -1,26 +1,8 @@
 #include "fold_kernel.h"
 
-#include <cmath>
-#if defined(__x86_64__) && !defined(__EMSCRIPTEN__)
-#include <immintrin.h>
-// glibc's vector atan2 (libmvec, GLIBC_2.35): four doubles, AVX2; within 4 ulp.
-extern "C" __attribute__((target("avx2,fma"))) __m256d _ZGVdN4vv_atan2(__m256d y, __m256d x);
-#define PHEDRA_VECTOR_ATAN2 1
-#endif
+#include "vector_atan2.h"
 
 namespace phedra {
-namespace {
-
-#ifdef PHEDRA_VECTOR_ATAN2
-__attribute__((target("avx2,fma"))) void atan2_avx2(const double* y, const double* x, double* out, std::size_t n) {
-  std::size_t h = 0;
-  for (; h + 4 <= n; h += 4) _mm256_storeu_pd(out + h, _ZGVdN4vv_atan2(_mm256_loadu_pd(y + h), _mm256_loadu_pd(x + h)));
-  for (; h < n; ++h) out[h] = std::atan2(y[h], x[h]);
-}
-const bool vector_atan2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-#endif
-
-}  // namespace
 
 FoldKernel::FoldKernel(const BarHingeModel& model) {
   const std::size_t n = model.fold_count();
@@ -58,13 +40,7 @@ void FoldKernel::angles(const Points& p, const Points* v, double* theta, double*
     rate[h] = length_[h] * (m.dot((*v)[i_[h]] + (a - 1.0) * vj - a * vk) / m.squaredNorm() -
                             nn.dot((*v)[l_[h]] - b * vj + (b - 1.0) * vk) / nn.squaredNorm());
   }
-#ifdef PHEDRA_VECTOR_ATAN2
-  if (vector_atan2) {
-    atan2_avx2(y, x, theta, n);
-    return;
-  }
-#endif
-  for (std::size_t h = 0; h < n; ++h) theta[h] = std::atan2(y[h], x[h]);
+  atan2_many(y, x, theta, n);
 }
 
 }  // namespace phedra
