@@ -40,10 +40,11 @@ for m in "${modules[@]}"; do
   sources+=("$out/unity/$m.cpp")
 done
 unity exporters "${exporter_sources[@]}"
-# Mechanics without its plots (cairo), its AVX2 atan2 and CHOLMOD (Eigen's own Cholesky): the energy landscape.
+# Mechanics without its plots (cairo), its AVX2 atan2, CHOLMOD (Eigen's own Cholesky) and
+# the mobility (LAPACK) of the command's report: the energy landscape and the figures.
 mechanics_sources=()
 for f in mechanics/src/*.cpp; do
-  case "$f" in *chart*|*_avx2*) ;; *) mechanics_sources+=("$f") ;; esac
+  case "$f" in *chart*|*_avx2*|*mobility*|*dense_svd*|*mechanics_report*) ;; *) mechanics_sources+=("$f") ;; esac
 done
 unity mechanics "${mechanics_sources[@]}"
 sources+=("$out/unity/mechanics.cpp" "$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)

@@ -7,7 +7,7 @@
 # the glTF exports in tests/blender; its glTF importer needs numpy, which
 # Debian's blender package does not depend on; pybind11 builds the Python module,
 # pytest runs its tests and matplotlib draws the example's plot; Spectra, CHOLMOD (SuiteSparse) and
-# serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS), then the npm packages of web/
+# serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS, LAPACK its dense SVD), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -16,7 +16,7 @@ set -euo pipefail
 packages=(
   g++ cmake ninja-build pkg-config
   zlib1g-dev libeigen3-dev libopenmesh-dev libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core libspectra-dev libsuitesparse-dev libopenblas0-serial
+  catch2 libbenchmark-dev libnlopt-cxx-dev libcairo2-dev fonts-dejavu-core libspectra-dev libsuitesparse-dev liblapack-dev libopenblas0-serial
   emscripten node-acorn
   chromium libegl-mesa0 libgl1-mesa-dri
   blender python3-numpy admesh

@@ -11,6 +11,7 @@
 #include "phedra/energy_landscape.h"
 #include "support/cli_run.h"
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
+#include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 
@@ -226,6 +227,31 @@ TEST_CASE("the fold angles' atan2 in bulk equals std::atan2 in every quadrant an
       const double exact = std::atan2(y[h], x[h]);
       INFO("n " << n << " h " << h << " y " << y[h] << " x " << x[h]);
       CHECK(std::abs(out[h] - exact) <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(exact)));
+    }
+  }
+}
+
+TEST_CASE("the mobility's SVD (LAPACK): A V = U S, V orthonormal and complete, rank-deficient and empty shapes", "[mechanics]") {
+  std::mt19937_64 rng(37);
+  for (const auto& [rows, cols, rank] : std::vector<std::array<int, 3>>{
+           {0, 4, 0}, {5, 0, 0}, {1, 1, 1}, {7, 3, 3}, {3, 7, 3}, {40, 25, 18}, {25, 40, 25}, {60, 60, 51}}) {
+    Eigen::MatrixXd left(rows, rank), right(rank, cols);
+    for (Eigen::Index i = 0; i < left.size(); ++i) left.data()[i] = test::uniform(rng, -1, 1);
+    for (Eigen::Index i = 0; i < right.size(); ++i) right.data()[i] = test::uniform(rng, -1, 1);
+    const Eigen::MatrixXd a = left * right;
+    const RightSingular svd = right_singular(a);
+    INFO(rows << " x " << cols << " of rank " << rank);
+    REQUIRE(svd.values.size() == std::min(rows, cols));
+    REQUIRE(svd.vectors.rows() == cols);
+    REQUIRE(svd.vectors.cols() == cols);
+    if (cols == 0) continue;
+    CHECK((svd.vectors.transpose() * svd.vectors - Eigen::MatrixXd::Identity(cols, cols)).norm() < 1e-12 * cols);
+    const double scale = std::max(1.0, svd.values.size() > 0 ? svd.values(0) : 0.0);
+    for (int k = 0; k < cols; ++k) {
+      const double expected = k < svd.values.size() ? svd.values(k) : 0.0;
+      if (k > 0 && k < svd.values.size()) CHECK(svd.values(k) <= svd.values(k - 1));
+      CHECK(std::abs((a * svd.vectors.col(k)).norm() - expected) < 1e-12 * scale * cols);
+      if (k >= rank) CHECK(expected < 1e-12 * scale * cols);  // the null space's basis
     }
   }
 }

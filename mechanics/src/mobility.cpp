@@ -1,10 +1,12 @@
 #include "phedra/mobility.h"
 
+#include "dense_svd.h"
+
 #include "phedra/stiffness_modes.h"
 #include "phedra/number_format.h"
 #include "phedra/report_values.h"
 
-#include <Eigen/Dense>
+#include <Eigen/QR>
 #include <Eigen/SparseCore>
 
 #include <algorithm>
@@ -68,15 +70,15 @@ Mobility mobility(const ModelMesh& mesh, const std::optional<Eigen::VectorXd>& v
   if (n <= 2400) {
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rigid);
     const Eigen::MatrixXd q = (qr.householderQ() * Eigen::MatrixXd::Identity(n, n)).rightCols(n - 6);
-    const Eigen::MatrixXd reduced = Eigen::MatrixXd(c) * q;
-    const Eigen::BDCSVD<Eigen::MatrixXd> svd(reduced, Eigen::ComputeFullV);
-    const Eigen::VectorXd s = svd.singularValues();  // descending, min(rows, n - 6) of them
+    const Eigen::MatrixXd reduced = c * q;  // sparse times dense: C has 6 to 12 entries a row
+    const RightSingular svd = right_singular(reduced);
+    const Eigen::VectorXd& s = svd.values;  // descending, min(rows, n - 6) of them
     largest = s.size() > 0 ? s(0) : 0.0;
     const Eigen::Index columns = n - 6;
     sigma = Eigen::VectorXd::Zero(columns);
     sigma.head(s.size()) = s;
     sigma.reverseInPlace();
-    null_basis = q * svd.matrixV().rowwise().reverse();
+    null_basis = q * svd.vectors.rowwise().reverse();
   } else {
     const Eigen::SparseMatrix<double> normal = c.transpose() * c;
     largest = std::sqrt(largest_eigenvalue(normal));
