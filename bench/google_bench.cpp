@@ -13,6 +13,7 @@
 #include "phedra/self_intersection.h"
 #include "phedra/keep_buildable.h"
 #include "phedra/assembly_mesh.h"
+#include "phedra/energy_landscape.h"
 
 #include <benchmark/benchmark.h>
 
@@ -116,6 +117,33 @@ void gltf_export(benchmark::State& state) {
 
 }  // namespace
 
+/// The energy landscape's parts on the mechanics bench's 10 x 10 array (`phedra
+/// bench` mechanics.energy_1000_s): one sample (0: positions and rates, 1: the
+/// whole evaluation of E and dE/dt), and the landscape of 1000 samples (2; 3:
+/// on one thread).
+void energy(benchmark::State& state) {
+  const Design array = bench::mechanics_array(10, 45);
+  const double rest = array.assembly.t_star();
+  const FoldEnergy fold(array, rest, StiffnessOptions{});
+  FoldEnergy::Scratch scratch;
+  std::vector<double> angles;
+  const double t = array.assembly.t_at_fraction(0.4);
+  EnergyOptions options;
+  options.rest_t = rest;
+  options.samples = 1000;
+  options.two_threads = state.range(0) != 3;
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      benchmark::DoNotOptimize(array.assembly.evaluate_rate(t, scratch.configuration, scratch.rates));
+    } else if (state.range(0) == 1) {
+      benchmark::DoNotOptimize(fold.evaluate(t, fold.rest_angles(), angles, scratch));
+    } else {
+      benchmark::DoNotOptimize(energy_landscape(array, options).folds);
+    }
+  }
+  state.counters["folds"] = static_cast<double>(fold.model().fold_count());
+}
+
 BENCHMARK(evaluate)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(write_buffer)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(flexion_interval)->Arg(10000)->Unit(benchmark::kMillisecond);
@@ -124,4 +152,5 @@ BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

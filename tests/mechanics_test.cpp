@@ -321,6 +321,37 @@ TEST_CASE("a bistable design: two minima and the barrier between them", "[mechan
   }
 }
 
+TEST_CASE("the energy landscape on two threads (halves of the samples) equals one walk, bit for bit", "[mechanics]") {
+  // The rest state near either end (one side nearly all the samples: the far part
+  // of the longer side starts afresh on the second thread and is joined), on every
+  // shipped preset and the bistable design.
+  std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
+  for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
+    if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") files.push_back(entry.path());
+  }
+  for (const auto& file : files) {
+    const Design design = load_design(file);
+    for (const double rest : {0.03, 0.97}) {
+      EnergyOptions o;
+      o.rest_t = design.assembly.t_at_fraction(rest);
+      o.stiffness.panels = PanelModel::n4b5;
+      const std::size_t folds = FoldEnergy(design, o.rest_t, o.stiffness).model().fold_count();
+      o.samples = std::max<std::size_t>(101, static_cast<std::size_t>(2e5 / static_cast<double>(folds)) + 2);
+      const EnergyLandscape two = energy_landscape(design, o);
+      o.two_threads = false;
+      const EnergyLandscape one = energy_landscape(design, o);
+      INFO(file.filename().string() << " at rest fraction " << rest << ", " << o.samples << " samples");
+      REQUIRE(two.samples.size() == one.samples.size());
+      for (std::size_t i = 0; i < one.samples.size(); ++i) {
+        CHECK(two.samples[i].energy == one.samples[i].energy);
+        CHECK(two.samples[i].rate == one.samples[i].rate);
+      }
+      REQUIRE(two.equilibria.size() == one.equilibria.size());
+      for (std::size_t i = 0; i < one.equilibria.size(); ++i) CHECK(two.equilibria[i].t == one.equilibria[i].t);
+    }
+  }
+}
+
 TEST_CASE("phedra mechanics: JSON fields, files, and every bad option a clear error with exit 2", "[mechanics][cli]") {
   using test::phedra_cli;
   const std::string preset = test::presets + "/parallelogram-tube.json";

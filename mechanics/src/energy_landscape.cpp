@@ -36,21 +36,31 @@ FoldEnergy::Value FoldEnergy::evaluate(double t, const std::vector<double>& near
   model_.node_positions(s.configuration, s.x);
   if (s.finite) model_.node_rates(s.rates, s.v);
   const std::size_t n = rest_angles_.size();
-  for (auto* a : {&s.theta, &s.rate, &s.y, &s.x_work}) a->resize(n);
+  s.theta.resize(n);
+  s.rate.resize(n);
+  s.turns.resize(n);
+  s.y.resize(n);
+  s.x_work.resize(n);
   kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data());
   const std::vector<double>& reference = near.empty() ? rest_angles_ : near;
   angles.resize(n);
   const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
   Value out;
-  double de = 0.0;
+  double de = 0.0, largest = 0.0;
   for (std::size_t h = 0; h < n; ++h) {
-    const double theta = s.theta[h] + turn * std::nearbyint((reference[h] - s.theta[h]) * per_turn);  // continuous_angle
+    // continuous_angle: the whole turns nearest the reference (none unless it is half a turn away or more).
+    const double q = (reference[h] - s.theta[h]) * per_turn;
+    const double turns = std::abs(q) < 0.5 ? 0.0 : std::nearbyint(q);
+    const double theta = s.theta[h] + turn * turns;
     angles[h] = theta;
+    s.turns[h] = static_cast<std::int8_t>(turns);
+    largest = std::max(largest, std::abs(theta - reference[h]));
     const double d = theta - rest_angles_[h];
     out.energy += 0.5 * weight_[h] * d * d;
     de += weight_[h] * d * s.rate[h];
   }
   if (s.finite) out.rate = de;
+  out.largest_turn = largest;
   return out;
 }
 
@@ -73,8 +83,8 @@ bool EnergyLandscape::bistable() const {
 namespace {
 
 struct Point {
-  double t;
-  double energy;
+  double t = 0.0;
+  double energy = 0.0;
   std::optional<double> rate;
   std::vector<double> angles;
 };
@@ -87,9 +97,7 @@ Point carried(const FoldEnergy& f, const Point& from, double t, FoldEnergy::Scra
   const FoldEnergy::Value v = f.evaluate(t, from.angles, p.angles, scratch);
   p.energy = v.energy;
   p.rate = v.rate;
-  double turn = 0.0;
-  for (std::size_t h = 0; h < p.angles.size(); ++h) turn = std::max(turn, std::abs(p.angles[h] - from.angles[h]));
-  if (turn <= 0.5 || depth >= 30) return p;
+  if (v.largest_turn <= 0.5 || depth >= 30) return p;
   const Point middle = carried(f, from, 0.5 * (from.t + t), scratch, depth + 1);
   return carried(f, middle, t, scratch, depth + 1);
 }
@@ -164,11 +172,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     kept.t = p.t;
     kept.energy = p.energy;
     kept.rate = p.rate;
-    kept.turns.resize(p.angles.size());
-    const double turn = 2.0 * std::numbers::pi;
-    for (std::size_t h = 0; h < p.angles.size(); ++h) {
-      kept.turns[h] = static_cast<std::int8_t>(std::nearbyint((p.angles[h] - scratch.theta[h]) * (1.0 / turn)));
-    }
+    kept.turns = scratch.turns;  // the evaluation at p.t that gave p.angles
     EnergySample& s = out.samples[i];
     s.t = p.t;
     s.energy = p.energy;
@@ -190,18 +194,55 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     at_rest.rate = v.rate;
     record(rest, at_rest, scratch);
   }
-  // Outwards from the rest state, each side on its own (a thread each for large models).
-  const bool large = static_cast<double>(out.folds) * static_cast<double>(ts.size()) > 2e5;
-  auto walk = [&](int direction) {
-    FoldEnergy::Scratch scratch;
-    Point previous = at_rest;
-    for (std::size_t i = rest; direction > 0 ? i + 1 < ts.size() : i > 0;) {
-      i = direction > 0 ? i + 1 : i - 1;
-      previous = carried(fold, previous, ts[i], scratch);
-      record(i, previous, scratch);
+  // Outwards from the rest state. For large models on two threads, in halves of
+  // the samples: one thread walks the longer side's near part, the other the
+  // shorter side and then the longer side's far part from a fresh start (its
+  // angles nearest the rest angles). Joined afterwards: when the walk through
+  // the near part reaches the far part's first sample with the same angles (the
+  // same turns of every fold), the far part is what one walk gives, bit for bit;
+  // else (a fold turned past a half turn on the way) it is walked again from there.
+  const bool large = options.two_threads && static_cast<double>(out.folds) * static_cast<double>(ts.size()) > 2e5;
+  // Samples rest + direction k for k = first..last, carried from `from`; the last point.
+  auto walk = [&](Point from, int direction, std::size_t first, std::size_t last, FoldEnergy::Scratch& scratch) {
+    for (std::size_t k = first; k <= last; ++k) {
+      const std::size_t i = direction > 0 ? rest + k : rest - k;
+      from = carried(fold, from, ts[i], scratch);
+      record(i, from, scratch);
     }
+    return from;
   };
-  both(large, [&] { walk(1); }, [&] { walk(-1); });
+  const std::size_t right = ts.size() - 1 - rest, left = rest;
+  const int longer = right >= left ? 1 : -1;
+  const std::size_t long_count = std::max(right, left), short_count = std::min(right, left);
+  const std::size_t half = (long_count + short_count + 1) / 2;
+  const std::size_t near = large && long_count > half ? half : long_count;  // the longer side's near part
+  const std::size_t far_first = longer > 0 ? rest + near + 1 : rest - near - 1;
+  Point near_end, far_start;
+  both(
+      large,
+      [&] {
+        FoldEnergy::Scratch scratch;
+        near_end = walk(at_rest, longer, 1, near, scratch);
+      },
+      [&] {
+        FoldEnergy::Scratch scratch;
+        walk(at_rest, -longer, 1, short_count, scratch);
+        if (near == long_count) return;
+        far_start = Point{ts[far_first], 0.0, std::nullopt, {}};
+        const FoldEnergy::Value v = fold.evaluate(far_start.t, fold.rest_angles(), far_start.angles, scratch);
+        far_start.energy = v.energy;
+        far_start.rate = v.rate;
+        record(far_first, far_start, scratch);
+        walk(far_start, longer, near + 2, long_count, scratch);
+      });
+  if (near < long_count) {
+    FoldEnergy::Scratch scratch;
+    const Point joined = carried(fold, near_end, ts[far_first], scratch);
+    if (joined.angles != far_start.angles) {
+      record(far_first, joined, scratch);
+      walk(joined, longer, near + 2, long_count, scratch);
+    }
+  }
   for (const Kept& p : points) out.largest_energy = std::max(out.largest_energy, p.energy);
   FoldEnergy::Scratch scratch;  // the equilibria's
   // Sample i with its angles (evaluated again: once for the raw angles, once carried from them turned).

@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,6 +33,7 @@ struct EnergyOptions {
   std::size_t samples = 201;    ///< over [t_lambda, t_mu], both limits included (>= 2); T0 is added
   StiffnessOptions stiffness;   ///< KF (and the panels model, for a material's calibration)
   MetricsAxes axes = MetricsAxes::structural;
+  bool two_threads = true;      ///< large models on two threads (the same result, bit for bit)
 };
 
 struct EnergySample {
@@ -85,12 +87,14 @@ class FoldEnergy {
     AssemblyConfiguration configuration;
     std::vector<Points> rates;
     bool finite = false;  ///< the rates exist (not at a flexion limit)
-    Points x, v;
-    std::vector<double> theta, rate, y, x_work;
+    Points x, v;  ///< the corner nodes' positions and rates
+    std::vector<double> theta, rate, normals, y, x_work;  ///< theta: each fold's angle in (-pi, pi]
+    std::vector<std::int8_t> turns;  ///< each fold's continuous angle is theta + 2 pi turns
   };
   struct Value {
     double energy = 0.0;
     std::optional<double> rate;  ///< dE/dt, none at a flexion limit
+    double largest_turn = 0.0;   ///< the largest change of a fold's angle from `near`
   };
   /// E and dE/dt at t; `angles` gets the folds' angles continuous from `near`
   /// (the angles at a t close by; empty: the rest angles).
