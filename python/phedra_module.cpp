@@ -66,6 +66,21 @@ py::list changes_list(const std::vector<FieldChange>& changes) {
   return out;
 }
 
+/// Numbers as float64, contiguous.
+using Numbers = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// An array-like of numbers (or one number: 0 dimensions); InvalidInputError
+/// naming the keyword for anything else.
+Numbers numbers(const py::object& object, const char* keyword) {
+  const bool text = py::isinstance<py::str>(object) || py::isinstance<py::bytes>(object);
+  if (!text && !object.is_none()) {
+    Numbers converted = Numbers::ensure(object);
+    if (converted) return converted;
+  }
+  throw InvalidInputError(keyword, std::string(keyword) + " must be a number or an array-like of numbers, got " +
+                                       py::str(py::type::of(object).attr("__name__")).cast<std::string>());
+}
+
 class PyDesign {
  public:
   PyDesign(json preset, std::string source) : preset_(std::move(preset)), source_(std::move(source)) {
@@ -74,6 +89,7 @@ class PyDesign {
   }
 
   const json& preset() const { return preset_; }
+  const std::string& source() const { return source_; }
   const Design& design() const { return *design_; }
   std::string name() const { return design_->assembly.name(); }
   std::string kind() const { return design_->kind; }
@@ -108,8 +124,45 @@ class PyDesign {
                                owner);
   }
 
-  /// The vertices at each t, (k, V, 3).
-  py::array_t<double> sample(const std::vector<double>& ts) const {
+  /// t at a fraction of the flexion interval (0: t_lambda, 1: t_mu, both exact),
+  /// of a number or elementwise of an array-like (an array of the same shape).
+  py::object t_at_fraction(const py::object& fractions) const {
+    auto one = [&](double f) { return fraction_to_t(f, "fraction"); };
+    const Numbers values = numbers(fractions, "fraction");
+    if (values.ndim() == 0) return py::float_(one(values.at()));
+    py::array_t<double> out(values.request().shape);
+    const double* in = values.data();
+    double* to = out.mutable_data();
+    for (py::ssize_t i = 0; i < values.size(); ++i) to[i] = one(in[i]);
+    return std::move(out);
+  }
+
+  /// t at fraction f of the flexion interval; InvalidInputError naming `keyword` outside [0, 1].
+  double fraction_to_t(double f, const char* keyword) const {
+    if (!(f >= 0.0 && f <= 1.0)) {
+      throw InvalidInputError(keyword, std::string(keyword) + " must be in [0, 1] (0: t_lambda, 1: t_mu), got " +
+                                           format_number(f));
+    }
+    return design_->assembly.t_at_fraction(f);
+  }
+
+  /// The vertices at each t of `ts`, or at each fraction of the flexion interval, (k, V, 3).
+  py::array_t<double> sample(const py::object& ts_object, const py::object& fractions) const {
+    if (!ts_object.is_none() && !fractions.is_none()) throw InvalidInputError("fractions", "give ts or fractions, not both");
+    if (ts_object.is_none() && fractions.is_none()) {
+      throw InvalidInputError("ts", "give ts (motion parameters t) or fractions= (of the flexion interval)");
+    }
+    const char* name = fractions.is_none() ? "ts" : "fractions";
+    const Numbers values = numbers(fractions.is_none() ? ts_object : fractions, name);
+    if (values.ndim() != 1) {
+      throw InvalidInputError(name, std::string(name) + " must be a sequence of numbers (a 1-dimensional array-like), got " +
+                                        (values.ndim() == 0 ? std::string("one number (for one t: evaluate(t))")
+                                                            : std::to_string(values.ndim()) + " dimensions"));
+    }
+    std::vector<double> ts(values.data(), values.data() + values.size());
+    if (!fractions.is_none()) {
+      for (double& t : ts) t = fraction_to_t(t, "fractions");
+    }
     const std::size_t v = vertex_count();
     py::array_t<double> out({static_cast<py::ssize_t>(ts.size()), static_cast<py::ssize_t>(v), py::ssize_t{3}});
     auto view = out.mutable_unchecked<3>();
@@ -456,6 +509,9 @@ class PyDesign {
 /// A design from a path (str or os.PathLike), a dict, or JSON text.
 PyDesign load(const py::object& what) {
   if (py::isinstance<py::dict>(what)) return PyDesign(from_python(what), "a dict");
+  if (py::isinstance<py::array>(what)) {
+    throw InvalidInputError("preset", "a numpy array is not a preset: give a path, a dict (a preset object) or JSON text");
+  }
   const std::string text = py::str(what).cast<std::string>();
   if (py::isinstance<py::str>(what) && !text.empty() && text.find_first_not_of(" \t\r\n") != std::string::npos &&
       text[text.find_first_not_of(" \t\r\n")] == '{') {
@@ -480,14 +536,21 @@ PyDesign load(const py::object& what) {
 }  // namespace
 }  // namespace phedra::python
 
-PYBIND11_MODULE(phedra, m) {
+PYBIND11_MODULE(_core, m) {
   using namespace phedra::python;
   using phedra::python::PyDesign;
-  m.doc() = "phedra: rigid-foldable P-hedra, their exact motion, buildability, repair and exports (docs/python.md)";
+  m.doc() = "phedra's compiled core (import phedra): rigid-foldable P-hedra, their exact motion, buildability, "
+            "repair and exports (docs/python.md)";
+  m.attr("__version__") = PHEDRA_VERSION;
 
   static py::exception<phedra::Error> error(m, "Error");
   static py::exception<phedra::InvalidInputError> input_error(m, "InputError", error.ptr());
   static py::exception<phedra::IOError> file_error(m, "FileError", error.ptr());
+  error.attr("__doc__") = "Every error of phedra's core: the message is what the command prints";
+  input_error.attr("__doc__") =
+      "A bad input (the command's exit 2): .field names the preset field or keyword as the command does "
+      "('' for the whole input, 't' for a t outside the flexion interval, 'path' for an unknown export format)";
+  file_error.attr("__doc__") = "A file that cannot be read or written (the command's exit 3)";
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -503,8 +566,8 @@ PYBIND11_MODULE(phedra, m) {
   });
 
   py::class_<PyDesign>(m, "Design", "A P-hedron, tube or tube array built from a preset (phedra.load)")
-      .def_property_readonly("name", &PyDesign::name)
-      .def_property_readonly("kind", &PyDesign::kind)
+      .def_property_readonly("name", &PyDesign::name, "The design's name, as phedra info prints it")
+      .def_property_readonly("kind", &PyDesign::kind, "What it is ('P-hedron', 'parallelogram tube', '3 x 3 grid of parallelogram cells', ...)")
       .def_property_readonly("t_star", &PyDesign::t_star, "The input configuration's motion parameter t*")
       .def_property_readonly("flexion_interval", &PyDesign::flexion_interval, "(t_lambda, t_mu)")
       .def_property_readonly("faces", &PyDesign::faces, "The quads, an (F, 4) array of vertex indices, as every export numbers them")
@@ -513,7 +576,12 @@ PYBIND11_MODULE(phedra, m) {
       .def("info", &PyDesign::info, "Name, kind, t*, the flexion interval, counts and the model size (a dict)")
       .def("evaluate", &PyDesign::evaluate, py::arg("t"),
            "The vertices at t, a (V, 3) array (phedra sample --t); InputError outside the flexion interval")
-      .def("sample", &PyDesign::sample, py::arg("ts"), "The vertices at each t, a (k, V, 3) array")
+      .def("sample", &PyDesign::sample, py::arg("ts") = py::none(), py::kw_only(), py::arg("fractions") = py::none(),
+           "The vertices at each t of ts (an array-like), or at each of fractions= of the flexion interval: a "
+           "(k, V, 3) array")
+      .def("t_at_fraction", &PyDesign::t_at_fraction, py::arg("fraction"),
+           "t at a fraction of the flexion interval (0: t_lambda, 1: t_mu, both exact): of a number, or elementwise "
+           "of an array-like")
       .def("check", &PyDesign::check, py::arg("samples") = 200, py::arg("tolerance") = 1e-9,
            "Planarity, isometry and closure over the flexion interval (phedra check's geometry, a dict)")
       .def("buildability", &PyDesign::buildability, py::arg("max_growth") = 10.0, py::arg("max_panel_ratio") = 100.0,
@@ -545,6 +613,13 @@ PYBIND11_MODULE(phedra, m) {
            py::arg("thickness") = py::none(), py::arg("side") = "auto", py::arg("hinge_gap") = 0.0,
            "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, "
            "default t*); with a thickness, the plates as solids at t: .stl, .3mf or .obj")
+      .def(py::pickle(
+          // By its preset (a repaired or optimized design's is its own), so that it travels to other processes.
+          [](const PyDesign& d) { return py::make_tuple(d.preset().dump(), d.source()); },
+          [](const py::tuple& state) {
+            if (state.size() != 2) throw std::runtime_error("phedra.Design: not a pickled design");
+            return PyDesign(json::parse(state[0].cast<std::string>()), state[1].cast<std::string>());
+          }))
       .def("__repr__", [](const PyDesign& d) {
         return "<phedra.Design '" + d.name() + "': " + d.kind() + ", " + std::to_string(d.vertex_count()) + " vertices>";
       });
