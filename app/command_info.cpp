@@ -46,12 +46,6 @@ nlohmann::json curve_json(const PHedron::ConfigurationCycle& c) {
   return j;
 }
 
-std::string limit_cause(std::size_t strip) {
-  if (strip == 0) return "linkage L_0 (V_{0,0} reaches the axis)";
-  return "strip " + std::to_string(strip) + " (profile planes " + std::to_string(strip - 1) + " and " +
-         std::to_string(strip) + " coincide)";
-}
-
 nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const AssemblyCheckReport& at_star) {
   const Assembly& a = design.assembly;
   const PHedron& p = a.base();
@@ -66,8 +60,8 @@ nlohmann::json info_json(const Design& design, const MotionDocument& mesh, const
                    {"moving_apex", p.motion_case() == MotionCase::a ? "S_0" : "S_1"},
                    {"flexion_interval", {f.lower.t, f.upper.t}},
                    {"limits",
-                    {{{"t", f.lower.t}, {"strip", f.lower.strip}, {"cause", limit_cause(f.lower.strip)}},
-                     {{"t", f.upper.t}, {"strip", f.upper.strip}, {"cause", limit_cause(f.upper.strip)}}}},
+                    {{{"t", f.lower.t}, {"strip", f.lower.strip}, {"cause", f.lower.cause()}},
+                     {{"t", f.upper.t}, {"strip", f.upper.strip}, {"cause", f.upper.cause()}}}},
                    {"profiles", g.rows()},
                    {"profile_vertices", p.profile_vertex_count()},
                    {"signs", signs_to_string(p.input().signs)},
@@ -136,8 +130,8 @@ void print_info(std::ostream& out, const Design& design, const MotionDocument& m
       << (p.motion_case() == MotionCase::a ? "S_0" : "S_1") << '\n'
       << "t*:                " << format_human(a.t_star()) << '\n'
       << "flexion interval:  [" << format_human(f.lower.t) << ", " << format_human(f.upper.t) << "]\n"
-      << "  t_lambda limit:  " << limit_cause(f.lower.strip) << '\n'
-      << "  t_mu limit:      " << limit_cause(f.upper.strip) << '\n';
+      << "  t_lambda limit:  " << f.lower.cause() << '\n'
+      << "  t_mu limit:      " << f.upper.cause() << '\n';
   {
     // The whole curve through the limits (paper, Remark 3); an array's members follow its base.
     const PHedron::ConfigurationCycle c = p.configuration_cycle();

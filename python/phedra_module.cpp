@@ -104,6 +104,15 @@ class PyDesign {
     d["kind"] = kind();
     d["t_star"] = t_star();
     d["flexion_interval"] = py::make_tuple(document_.t_lambda, document_.t_mu);
+    py::list limits;  // as phedra info --json has them
+    for (const FlexionLimit& limit : {a.flexion_interval().lower, a.flexion_interval().upper}) {
+      py::dict l;
+      l["t"] = limit.t;
+      l["strip"] = limit.strip;
+      l["cause"] = limit.cause();
+      limits.append(l);
+    }
+    d["limits"] = limits;
     d["motion_case"] = document_.motion_case;
     d["members"] = a.member_count();
     d["vertices"] = vertex_count();

@@ -5,6 +5,13 @@
 #include <limits>
 
 namespace phedra {
+
+std::string FlexionLimit::cause() const {
+  if (strip == 0) return "linkage L_0 (V_{0,0} reaches the axis)";
+  return "strip " + std::to_string(strip) + " (profile planes " + std::to_string(strip - 1) + " and " +
+         std::to_string(strip) + " coincide)";
+}
+
 namespace {
 
 /// Bisects [feasible, infeasible] to adjacent doubles with `test` (true: feasible).

@@ -322,3 +322,19 @@ def test_bad_arguments_are_input_errors_named_by_keyword():
     with pytest.raises(phedra.InputError) as e:
         phedra.load(np.zeros((3, 3)))
     assert e.value.field == "preset" and "numpy array" in str(e.value)
+
+
+def test_metrics_series_as_arrays_and_info_with_the_limits():
+    d = phedra.load(preset("grid-3x3.json"))
+    m = d.metrics(samples=11)
+    series = m["series"]
+    k = len(m["samples"])
+    assert series["t"].shape == (k,) and series["length"].shape == (k, 3) and series["strain_rate"].shape == (k, 3)
+    for i, s in enumerate(m["samples"]):
+        assert series["t"][i] == s["t"]
+        np.testing.assert_array_equal(series["length"][i], s["length"])
+        nu = s["poisson"]["nu_12"]
+        assert (np.isnan(series["poisson"]["nu_12"][i]) if nu is None else series["poisson"]["nu_12"][i] == nu)
+    info = d.info()
+    doc = json.loads(cli("info", preset("grid-3x3.json"), "--json").stdout)
+    assert info["limits"] == doc["limits"]

@@ -7,6 +7,7 @@
 #include "phedra/strip_chain.h"
 
 #include <functional>
+#include <string>
 
 namespace phedra {
 
@@ -15,6 +16,8 @@ namespace phedra {
 struct FlexionLimit {
   double t = 0.0;
   std::size_t strip = 0;
+  /// In words: "linkage L_0 (V_{0,0} reaches the axis)" or "strip i (profile planes i-1 and i coincide)".
+  std::string cause() const;
 };
 
 struct FlexionInterval {
