@@ -411,9 +411,7 @@ class PyDesign {
       }
       FitTarget f;
       for (py::ssize_t k = 0; k < points.shape(0); ++k) f.points.emplace_back(points.at(k, 0), points.at(k, 1), points.at(k, 2));
-      for (const Vec3& p : f.points) {
-        if (!p.allFinite()) throw InvalidInputError("fit", "a point is not finite");
-      }
+      FitTarget::check_points(f.points, "fit", "fit: ");
       f.tolerance = fit_tol ? *fit_tol : 0.01 * bounded_model_size(*design_, options.bounds);
       if (!(f.tolerance > 0.0)) throw InvalidInputError("fit_tol", "must be positive");
       options.fit = f;
@@ -460,8 +458,12 @@ class PyDesign {
   /// Writes the design: .glb / .gltf (animated), .fold (frames over the
   /// interval), .json (the motion document), .obj / .ply (at t, default t*).
   void export_to(const std::string& path, std::size_t count, std::optional<double> t, std::optional<double> thickness,
-                 const std::string& side, double hinge_gap) const {
+                 const std::string& side, double hinge_gap, bool nodes, bool cycle) const {
     const std::string extension = std::filesystem::path(path).extension().string();
+    const bool gltf = extension == ".glb" || extension == ".gltf";
+    if (nodes && !gltf) throw InvalidInputError("nodes", "a rigid node a panel is a glTF (.glb, .gltf) representation");
+    if (cycle && !gltf) throw InvalidInputError("cycle", "the configuration curve is exported as glTF (.glb, .gltf) only");
+    if (cycle && t) throw InvalidInputError("cycle", "the whole cycle is an animation: not with a static t");
     std::string bytes;
     if (thickness) {  // thick plates as solids, as `phedra generate --thickness`
       if (!is_solid_format(extension)) {
@@ -478,6 +480,8 @@ class PyDesign {
       GltfOptions options;
       options.binary = extension == ".glb";
       if (t) options.static_t = *t;
+      options.morph = !nodes;  // as phedra generate --nodes
+      options.cycle = cycle;   // as phedra generate --cycle: through the flexion limits
       bytes = gltf_bytes(*design_, options);
     } else if (extension == ".fold" || extension == ".json") {
       if (count < 2) throw InvalidInputError("count", "at least 2 configurations over the interval");
@@ -486,7 +490,7 @@ class PyDesign {
         ts.push_back(*t);
       } else {
         for (std::size_t k = 0; k < count; ++k) {
-          ts.push_back(document_.t_lambda + (document_.t_mu - document_.t_lambda) * static_cast<double>(k) / static_cast<double>(count - 1));
+          ts.push_back(fraction_to_t(static_cast<double>(k) / static_cast<double>(count - 1), "count"));  // ends exact
         }
       }
       bytes = extension == ".fold" ? fold_json(*design_, ts) : motion_json(document_, ts);
@@ -620,8 +624,11 @@ PYBIND11_MODULE(_core, m) {
            "ends it (a dict)")
       .def("export", &PyDesign::export_to, py::arg("path"), py::arg("count") = 41, py::arg("t") = py::none(),
            py::arg("thickness") = py::none(), py::arg("side") = "auto", py::arg("hinge_gap") = 0.0,
-           "Write .glb/.gltf (animated, or static at t), .fold/.json (count configurations, or t), .obj/.ply (at t, "
-           "default t*); with a thickness, the plates as solids at t: .stl, .3mf or .obj")
+           py::arg("nodes") = false, py::arg("cycle") = false,
+           "Write .glb/.gltf (animated, or static at t; nodes=True: a rigid node a panel, as phedra generate --nodes; "
+           "cycle=True: the whole configuration curve through the flexion limits, as --cycle), .fold/.json (count "
+           "configurations, or t), .obj/.ply (at t, default t*); with a thickness, the plates as solids at t: .stl, "
+           ".3mf or .obj")
       .def(py::pickle(
           // By its preset (a repaired or optimized design's is its own), so that it travels to other processes.
           [](const PyDesign& d) { return py::make_tuple(d.preset().dump(), d.source()); },

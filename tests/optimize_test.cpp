@@ -154,6 +154,8 @@ TEST_CASE("optimize: one clear error per bad input, exit 2 (3 for an unwritable 
   };
   std::ofstream(dir / "short.json") << R"({"points": [[0, 0, 0], [1, 0, 0]]})";
   std::ofstream(dir / "bad-point.json") << R"({"points": [[0, 0, 0], [1, "a", 0], [0, 1, 0]]})";
+  std::ofstream(dir / "one-point.json") << R"({"points": [[1, 2, 3], [1, 2, 3], [1, 2, 3], [1, 2, 3]]})";
+  std::ofstream(dir / "one-line.json") << R"({"points": [[0, 0, 0], [1, 1, 1], [2, 2, 2], [-3, -3, -3]]})";
   const std::vector<Bad> bad{
       {{"--target", "poisson.nu_21=1"}, 2, "unknown figure \"poisson.nu_21\" in \"poisson.nu_21=1\"; known: poisson.nu_12, "},
       {{"--target", "poisson.nu_12=abc"}, 2, "the value \"abc\" is not a number"},
@@ -163,6 +165,8 @@ TEST_CASE("optimize: one clear error per bad input, exit 2 (3 for an unwritable 
       {{"--target", "flexion_width>=1", "--axes", "polar"}, 2, "unknown axes \"polar\""},
       {{"--fit", dir / "short.json"}, 2, "--fit: " + (dir / "short.json") + ": at least 3 points, found 2"},
       {{"--fit", dir / "bad-point.json"}, 2, "points[1] is not three numbers"},
+      {{"--fit", dir / "one-point.json"}, 2, "the 4 points all coincide: there is no surface to fit"},
+      {{"--fit", dir / "one-line.json"}, 2, "the 4 points lie on one line"},
       {{"--fit", dir / "missing.json"}, 3, "cannot open for reading"},
   };
   for (const Bad& b : bad) {

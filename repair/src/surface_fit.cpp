@@ -79,12 +79,33 @@ std::vector<Vec3> FitTarget::read_points(const std::string& path) {
     if (!p.is_array() || p.size() != 3 || !std::all_of(p.begin(), p.end(), [](const nlohmann::json& v) { return v.is_number(); })) {
       throw InvalidInputError("--fit", path + ": points[" + std::to_string(k) + "] is not three numbers [x, y, z]");
     }
-    const Vec3 v(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
-    if (!v.allFinite()) throw InvalidInputError("--fit", path + ": points[" + std::to_string(k) + "] is not finite");
-    points.push_back(v);
+    points.emplace_back(p[0].get<double>(), p[1].get<double>(), p[2].get<double>());
   }
-  if (points.size() < 3) throw InvalidInputError("--fit", path + ": at least 3 points, found " + std::to_string(points.size()));
+  check_points(points, "--fit", path + ": ");
   return points;
+}
+
+void FitTarget::check_points(const std::vector<Vec3>& points, const std::string& field, const std::string& where) {
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (!points[k].allFinite()) throw InvalidInputError(field, where + "points[" + std::to_string(k) + "] is not finite");
+  }
+  if (points.size() < 3) throw InvalidInputError(field, where + "at least 3 points, found " + std::to_string(points.size()));
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : points) centroid += p;
+  centroid /= static_cast<double>(points.size());
+  Mat3 spread = Mat3::Zero();
+  for (const Vec3& p : points) spread += (p - centroid) * (p - centroid).transpose();
+  const Vec3 values = Eigen::SelfAdjointEigenSolver<Mat3>(spread, Eigen::EigenvaluesOnly).eigenvalues();  // ascending
+  const double scale = std::max(1.0, centroid.squaredNorm()) * static_cast<double>(points.size());
+  if (!(values(2) > 1e-24 * scale)) {
+    throw InvalidInputError(field, where + "the " + std::to_string(points.size()) +
+                                       " points all coincide: there is no surface to fit (the points' rigid alignment is undefined)");
+  }
+  if (!(values(1) > 1e-12 * values(2))) {  // rounding leaves about 1e-16 of the largest
+    throw InvalidInputError(field, where + "the " + std::to_string(points.size()) +
+                                       " points lie on one line: they span no surface to fit (the points' turn about "
+                                       "the line is undefined)");
+  }
 }
 
 namespace {

@@ -338,3 +338,46 @@ def test_metrics_series_as_arrays_and_info_with_the_limits():
     info = d.info()
     doc = json.loads(cli("info", preset("grid-3x3.json"), "--json").stdout)
     assert info["limits"] == doc["limits"]
+
+
+def _gltf_json(path):
+    import struct
+    with open(path, "rb") as f:
+        data = f.read()
+    length = struct.unpack_from("<I", data, 12)[0]
+    return json.loads(data[20:20 + length])
+
+
+def test_export_nodes_and_cycle_as_the_command(tmp_path):
+    d = phedra.load(preset("parallelogram-tube.json"))
+    for kwargs, flag in [({"nodes": True}, "--nodes"), ({"cycle": True}, "--cycle"), ({}, None)]:
+        mine, theirs = tmp_path / "py.glb", tmp_path / "cli.glb"
+        d.export(str(mine), **kwargs)
+        run = cli("generate", preset("parallelogram-tube.json"), "-o", str(theirs), *([flag] if flag else []))
+        assert run.returncode == 0, run.stderr
+        a, b = _gltf_json(mine), _gltf_json(theirs)
+        assert len(a["nodes"]) == len(b["nodes"]), kwargs
+        assert [len(x["samplers"]) for x in a["animations"]] == [len(x["samplers"]) for x in b["animations"]], kwargs
+        counts = [a["accessors"][s["input"]]["count"] for x in a["animations"] for s in x["samplers"]]
+        assert counts == [b["accessors"][s["input"]]["count"] for x in b["animations"] for s in x["samplers"]], kwargs
+    assert len(_gltf_json(tmp_path / "py.glb")["nodes"]) < len(d.faces)  # morph targets: one mesh
+    for kwargs, field in [({"nodes": True}, "nodes"), ({"cycle": True}, "cycle")]:
+        with pytest.raises(phedra.InputError) as e:
+            d.export(str(tmp_path / "x.obj"), **kwargs)
+        assert e.value.field == field
+    with pytest.raises(phedra.InputError) as e:
+        d.export(str(tmp_path / "x.glb"), cycle=True, t=d.t_star)
+    assert e.value.field == "cycle"
+    # count configurations from t_lambda to t_mu exactly (no t an ulp past the interval)
+    d.export(str(tmp_path / "x.fold"), count=7)
+    frames = json.loads((tmp_path / "x.fold").read_text())["file_frames"]
+    assert len(frames) == 7
+
+
+def test_fit_points_that_span_no_surface_are_refused():
+    d = phedra.load(preset("default.json"))
+    for points, words in [(np.ones((10, 3)), "all coincide"), (np.outer(np.arange(5.0), [1.0, 2.0, 0.5]), "one line"),
+                          (np.zeros((2, 3)), "(k, 3) array with k >= 3")]:
+        with pytest.raises(phedra.InputError) as e:
+            d.optimize(fit=points, max_seconds=5)
+        assert e.value.field == "fit" and words in str(e.value), words

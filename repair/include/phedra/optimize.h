@@ -45,6 +45,10 @@ struct FitTarget {
   std::shared_ptr<Mat3> start;
   /// InvalidInputError("--fit", ...) naming the file and the bad entry.
   static std::vector<Vec3> read_points(const std::string& path);
+  /// InvalidInputError(field, where + ...) unless there are 3 points or more, all
+  /// finite, spanning a plane (not all on one point or one line: the rigid
+  /// alignment of the fit would be undefined).
+  static void check_points(const std::vector<Vec3>& points, const std::string& field, const std::string& where);
 };
 
 /// The best rigid motion of `points` onto a design's panels at t*: the RMS
