@@ -197,6 +197,26 @@ class PyDesign {
 
   std::vector<std::vector<std::size_t>> labels() const { return document_.labels; }
 
+  /// Each vertex's number in the FOLD file (vertices that coincide over the whole motion share one).
+  py::array_t<std::int64_t> fold_vertex() const {
+    const FoldNumbering& n = numbering();
+    py::array_t<std::int64_t> out(static_cast<py::ssize_t>(n.vertex.size()));
+    auto view = out.mutable_unchecked<1>();
+    for (std::size_t v = 0; v < n.vertex.size(); ++v) {
+      view(static_cast<py::ssize_t>(v)) = n.vertex[v] == SIZE_MAX ? -1 : static_cast<std::int64_t>(n.vertex[v]);
+    }
+    return out;
+  }
+
+  /// Whether each face is a triangle: two of its corners the same point over the whole motion.
+  py::array_t<bool> triangles() const {
+    const FoldNumbering& n = numbering();
+    py::array_t<bool> out(static_cast<py::ssize_t>(n.faces.size()));
+    auto view = out.mutable_unchecked<1>();
+    for (std::size_t f = 0; f < n.faces.size(); ++f) view(static_cast<py::ssize_t>(f)) = n.faces[f].size() == 3;
+    return out;
+  }
+
   py::object check(std::size_t samples, double tolerance) const {
     CheckOptions options;
     options.samples = samples;
@@ -513,10 +533,16 @@ class PyDesign {
     return check_thickness(*design_, assess_buildability(*design_), options);
   }
 
+  const FoldNumbering& numbering() const {
+    if (!numbering_) numbering_ = std::make_shared<FoldNumbering>(fold_numbering(*design_));
+    return *numbering_;
+  }
+
   json preset_;
   std::string source_;
   std::shared_ptr<Design> design_;
   MotionDocument document_;
+  mutable std::shared_ptr<FoldNumbering> numbering_;  ///< computed when first asked
 };
 
 /// A design from a path (str or os.PathLike), a dict, or JSON text.
@@ -585,6 +611,13 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("flexion_interval", &PyDesign::flexion_interval, "(t_lambda, t_mu)")
       .def_property_readonly("faces", &PyDesign::faces, "The quads, an (F, 4) array of vertex indices, as every export numbers them")
       .def_property_readonly("labels", &PyDesign::labels, "Each vertex's [i, c] (or [member, i, c] in an array)")
+      .def_property_readonly("triangles", &PyDesign::triangles,
+                             "An (F,) bool array: True where a face has two corners at one point over the whole "
+                             "motion (a triangle: compute its normal from its distinct corners)")
+      .def_property_readonly("fold_vertex", &PyDesign::fold_vertex,
+                             "A (V,) int array: each vertex's number in the FOLD export (vertices that coincide over "
+                             "the whole motion share one; the FOLD file numbers them in the order its faces first use "
+                             "them): fold['vertices_coords'][fold_vertex[v]] is evaluate(t)[v]")
       .def_property_readonly("preset", [](const PyDesign& d) { return to_python(d.preset()); }, "The preset (a dict)")
       .def("info", &PyDesign::info, "Name, kind, t*, the flexion interval, counts and the model size (a dict)")
       .def("evaluate", &PyDesign::evaluate, py::arg("t"),

@@ -109,23 +109,39 @@ void write_state(const Hinges& h, const std::vector<double>& raw, json& angles, 
 
 }  // namespace
 
+namespace {
+
+FoldNumbering numbering_of(const AssemblyMesh& mesh, const Assembly& a) {
+  // Vertices that coincide over the whole motion are one FOLD vertex; a panel
+  // with two corners at one place is the triangle it is (no zero-length edge).
+  const std::vector<std::size_t> representative = coincident_vertices(mesh, a);
+  FoldNumbering n;
+  n.vertex.assign(mesh.vertices.size(), SIZE_MAX);
+  for (const Quad& q : welded_faces(mesh, representative)) {
+    std::vector<std::size_t> corners = distinct_corners(q);
+    for (std::size_t& c : corners) {
+      if (n.vertex[c] == SIZE_MAX) n.vertex[c] = n.kept.size(), n.kept.push_back(c);
+      c = n.vertex[c];
+    }
+    n.faces.push_back(std::move(corners));
+  }
+  for (std::size_t v = 0; v < n.vertex.size(); ++v) {
+    if (n.vertex[v] == SIZE_MAX && n.vertex[representative[v]] != SIZE_MAX) n.vertex[v] = n.vertex[representative[v]];
+  }
+  return n;
+}
+
+}  // namespace
+
+FoldNumbering fold_numbering(const Design& design) { return numbering_of(panel_mesh(design), design.assembly); }
+
 std::string fold_json(const Design& design, const std::vector<double>& ts, const json& buildability) {
   if (ts.empty()) throw InvalidInputError("", "FOLD export needs at least one t");
   const Assembly& a = design.assembly;
   const AssemblyMesh mesh = panel_mesh(design);
-  // Vertices that coincide over the whole motion are one FOLD vertex; a panel
-  // with two corners at one place is the triangle it is (no zero-length edge).
-  const std::vector<std::size_t> representative = coincident_vertices(mesh, a);
-  std::vector<std::size_t> number(mesh.vertices.size(), SIZE_MAX), kept;
-  std::vector<std::vector<std::size_t>> faces;
-  for (const Quad& q : welded_faces(mesh, representative)) {
-    std::vector<std::size_t> corners = distinct_corners(q);
-    for (std::size_t& c : corners) {
-      if (number[c] == SIZE_MAX) number[c] = kept.size(), kept.push_back(c);
-      c = number[c];
-    }
-    faces.push_back(std::move(corners));
-  }
+  const FoldNumbering numbering = numbering_of(mesh, a);
+  const std::vector<std::size_t>& kept = numbering.kept;
+  const std::vector<std::vector<std::size_t>>& faces = numbering.faces;
   const Hinges h = hinges_of(faces);
   auto positions = [&](double t) {
     const Points all = mesh.positions(a.evaluate(t));

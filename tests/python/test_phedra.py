@@ -381,3 +381,25 @@ def test_fit_points_that_span_no_surface_are_refused():
         with pytest.raises(phedra.InputError) as e:
             d.optimize(fit=points, max_seconds=5)
         assert e.value.field == "fit" and words in str(e.value), words
+
+
+@pytest.mark.parametrize("name", ["default.json", "grid-3x3.json"])
+def test_fold_numbering_exposed_and_triangles_flagged(tmp_path, name):
+    d = phedra.load(preset(name))
+    path = tmp_path / "d.fold"
+    d.export(str(path), t=d.t_star)
+    fold = json.loads(path.read_text())
+    coords = np.array(fold["vertices_coords"])
+    x = d.evaluate(d.t_star)
+    number = d.fold_vertex
+    assert number.shape == (len(x),) and number.min() >= 0 and number.max() == len(coords) - 1
+    size = d.info()["model_size"]
+    assert np.abs(coords[number] - x).max() <= 1e-12 * size
+    faces, triangles = d.faces, d.triangles
+    assert triangles.shape == (len(faces),)
+    for f, quad in enumerate(faces):
+        expected = list(dict.fromkeys(number[quad]))  # its distinct FOLD corners, in order
+        assert fold["faces_vertices"][f] == expected
+        assert triangles[f] == (len(expected) == 3)
+    if name == "default.json":  # faces[6]: vertices 7 and 15 at one point over the whole motion
+        assert triangles[6] and number[7] == number[15]

@@ -18,6 +18,17 @@
 
 namespace phedra {
 
+/// How the FOLD file numbers a design's vertices and faces: the panel mesh's
+/// vertices (the rows of every other export and of Python's evaluate) that
+/// coincide over the whole motion are one FOLD vertex, numbered in the order the
+/// faces first use them; a face with two corners at one place is a triangle.
+struct FoldNumbering {
+  std::vector<std::size_t> vertex;  ///< each panel-mesh vertex's FOLD vertex
+  std::vector<std::size_t> kept;    ///< each FOLD vertex's panel-mesh vertex (the first of those at it)
+  std::vector<std::vector<std::size_t>> faces;  ///< FOLD's faces_vertices (3 or 4), in panel order
+};
+FoldNumbering fold_numbering(const Design& design);
+
 /// The FOLD JSON text for the given t (at least one); `buildability` (when not
 /// null) is stored as "phedra:buildability". Throws Error(internal) rather than
 /// write a non-finite number.
