@@ -2,6 +2,7 @@
 
 #include "phedra/coupling.h"
 #include "phedra/errors.h"
+#include "phedra/number_format.h"
 
 namespace phedra {
 
@@ -27,11 +28,20 @@ TubeGrid make_parallelogram_grid(ControlPolylines base, const std::vector<double
   set_tube_profile(base, TubeType::parallelogram, {u[0], w[0], u[1], w[1]});
   TubeGrid grid{Assembly(PHedron(std::move(base)), "cell (0,0)"), {}};
   grid.cell.assign(rows, std::vector<std::size_t>(columns, 0));
+  // A cell's errors name the height its far side lies on (the preset's field, its value in the file).
   auto add = [&](std::size_t parent, std::size_t side, double height, std::size_t a, std::size_t b) {
     const std::string name = "cell (" + std::to_string(a) + "," + std::to_string(b) + ")";
-    MemberSpec spec = face_coupling(grid.assembly, parent, side, height, "grid " + name);
-    spec.name = name;
-    grid.cell[a][b] = grid.assembly.add_member(spec);
+    const std::string field = a == 0 ? "grid.w_heights[" + std::to_string(b + 1) + "]" : "grid.u_heights[" + std::to_string(a + 1) + "]";
+    try {
+      MemberSpec spec = face_coupling(grid.assembly, parent, side, height, "grid " + name);
+      spec.name = name;
+      grid.cell[a][b] = grid.assembly.add_member(spec);
+    } catch (const InvalidInputError& e) {
+      if (e.reason().find("coincide") == std::string::npos) throw InvalidInputError(field, name + ": " + e.reason());
+      throw InvalidInputError(field, name + ", whose far side lies on this height (" + format_number(height) +
+                                         "), would be degenerate: two of its vertex lines coincide; neighbouring "
+                                         "heights of grid.u_heights and of grid.w_heights must differ");
+    }
   };
   // Column a = 0 along the second family (side 2 of each cell lies on line w[b+1]),
   // then each row along the first family: side 1 of a cell (a = 0) lies on u[1];

@@ -7,7 +7,9 @@
 #include "phedra/preset.h"
 #include "phedra/tube_array.h"
 
+#include <functional>
 #include <optional>
+#include <regex>
 
 namespace phedra {
 namespace {
@@ -24,6 +26,29 @@ void forbid_profile(const json& preset, const char* key) {
   }
 }
 
+/// Runs `build`; an error naming the generated profile's apex_heights[k] (a tube's or
+/// a grid's base cell: [z0, z1, z2, z3, z0, z1]) names the preset's own field instead.
+Design in_user_terms(const std::function<Design()>& build, const std::function<std::string(std::size_t)>& height) {
+  try {
+    return build();
+  } catch (const InvalidInputError& e) {
+    static const std::regex apex(R"(apex_heights\[([0-9]+)\])");
+    auto rename = [&](const std::string& text) {
+      std::string out;
+      auto from = text.cbegin();
+      for (std::sregex_iterator it(text.begin(), text.end(), apex), end; it != end; ++it) {
+        out.append(from, (*it)[0].first);
+        out += height(std::stoul((*it)[1].str()) % 4);
+        from = (*it)[0].second;
+      }
+      return out.append(from, text.cend());
+    };
+    const std::string field = rename(e.field());
+    if (field == e.field()) throw;
+    throw InvalidInputError(field, rename(e.reason()));
+  }
+}
+
 Design base_design(const json& preset) {
   const bool has_tube = preset.contains("tube"), has_grid = preset.contains("grid");
   if (has_tube && has_grid) throw InvalidInputError("grid", "give either \"tube\" or \"grid\", not both");
@@ -34,7 +59,10 @@ Design base_design(const json& preset) {
     json_only_keys(grid, "grid", {"u_heights", "w_heights"});
     const std::vector<double> u = json_numbers(json_member(grid, "grid", "u_heights"), "grid.u_heights");
     const std::vector<double> w = json_numbers(json_member(grid, "grid", "w_heights"), "grid.w_heights");
-    return grid_design(std::move(input), u, w);
+    // The base cell (0,0) is the tube [u_0, w_0, u_1, w_1].
+    return in_user_terms([&] { return grid_design(std::move(input), u, w); }, [](std::size_t k) {
+      return std::string(k % 2 == 0 ? "grid.u_heights[" : "grid.w_heights[") + std::to_string(k / 2) + "]";
+    });
   }
   if (has_tube) {
     forbid_profile(preset, "tube");
@@ -47,7 +75,8 @@ Design base_design(const json& preset) {
     if (z.size() != 4) {
       throw InvalidInputError("tube.apex_heights", "expected 4 heights [z_0, z_1, z_2, z_3], got " + std::to_string(z.size()));
     }
-    return tube_design(std::move(input), type, {z[0], z[1], z[2], z[3]});
+    return in_user_terms([&] { return tube_design(std::move(input), type, {z[0], z[1], z[2], z[3]}); },
+                         [](std::size_t k) { return "tube.apex_heights[" + std::to_string(k) + "]"; });
   }
   return single_design(std::move(input));
 }
