@@ -30,6 +30,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <limits>
 #include <memory>
@@ -225,6 +226,11 @@ class PyDesign {
   }
 
   py::object buildability(double max_growth, double max_panel_ratio) const {
+    for (const auto& [value, name] : {std::pair{max_growth, "max_growth"}, std::pair{max_panel_ratio, "max_panel_ratio"}}) {
+      if (!(value >= 0.0) || !std::isfinite(value)) {
+        throw InvalidInputError(name, std::string(name) + " must be a non-negative number (0: no bound), got " + format_number(value));
+      }
+    }
     BuildabilityOptions options;
     options.bounds.max_growth = max_growth;
     options.bounds.max_edge_ratio = max_panel_ratio;
@@ -594,8 +600,19 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const phedra::InvalidInputError& e) {
-      py::object instance = py::reinterpret_borrow<py::object>(input_error.ptr())(e.what());
-      instance.attr("field") = e.field();  // the preset field, as the command names it ("" for the whole input)
+      // The preset field as the command names it ("" for the whole input); a command-line
+      // option (--max-growth) as the keyword that gives it here (max_growth).
+      std::string field = e.field(), message = e.what();
+      if (field.rfind("--", 0) == 0) {
+        const std::string option = field;
+        field = option == "--plate-side" ? "side" : field.substr(2);  // the keywords named otherwise here
+        std::replace(field.begin(), field.end(), '-', '_');
+        for (std::size_t at = message.find(option); at != std::string::npos; at = message.find(option, at + field.size())) {
+          message.replace(at, option.size(), field);
+        }
+      }
+      py::object instance = py::reinterpret_borrow<py::object>(input_error.ptr())(message);
+      instance.attr("field") = field;
       PyErr_SetObject(input_error.ptr(), instance.ptr());
     } catch (const phedra::IOError& e) {
       file_error(e.what());

@@ -185,7 +185,7 @@ def test_thick_plates_as_the_command_has_them(tmp_path):
     assert (tmp_path / "plates.stl").read_bytes()[80:] == (tmp_path / "command.stl").read_bytes()[80:]
     with pytest.raises(phedra.InputError) as e:
         d.thick(0.08, side="up")
-    assert e.value.field == "--plate-side"
+    assert e.value.field == "side" and "--" not in str(e.value)
     with pytest.raises(phedra.InputError) as e:
         d.export(str(tmp_path / "plates.glb"), thickness=0.08)
     assert e.value.field == "thickness"
@@ -403,3 +403,14 @@ def test_fold_numbering_exposed_and_triangles_flagged(tmp_path, name):
         assert triangles[f] == (len(expected) == 3)
     if name == "default.json":  # faces[6]: vertices 7 and 15 at one point over the whole motion
         assert triangles[6] and number[7] == number[15]
+
+
+def test_errors_name_python_keywords_not_command_options():
+    d = phedra.load(preset("default.json"))
+    with pytest.raises(phedra.InputError) as e:
+        d.metrics(samples=1)
+    assert e.value.field == "samples" and "--" not in str(e.value)
+    for kwargs, field in [({"max_growth": -1.0}, "max_growth"), ({"max_panel_ratio": float("nan")}, "max_panel_ratio")]:
+        with pytest.raises(phedra.InputError) as e:
+            d.buildability(**kwargs)
+        assert e.value.field == field and field + " must be a non-negative number" in str(e.value)
