@@ -1,6 +1,7 @@
 // phedra bench [--json] [--quick] [--max-vertices N] [--only GROUP]... [-o FILE]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "support.h"
 
 #include "phedra/bench_figures.h"
@@ -31,7 +32,7 @@ void add_bench_command(CLI::App& app, Context& context) {
                 "Small cases only (a few seconds; the figures are not comparable with the targets, which are "
                 "then not enforced)");
   sub->add_option("--max-vertices", options->bench.max_vertices, "Largest evaluate(t) case (default 10^7)")
-      ->check(CLI::Range(std::size_t{1000}, std::size_t{100000000}));
+      ->check(whole_number_between(1000, 100000000));
   sub->add_option("--only", options->bench.only,
                   "Only these groups of figures (repeatable): memory, evaluate, accuracy, interval, closure, gltf, "
                   "repair, optimize, mechanics")

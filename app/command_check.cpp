@@ -1,6 +1,7 @@
 // phedra check PRESET [--samples N] [--tolerance REL] [--closure-only] [--geometry-only] [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/assembly_check.h"
 #include "phedra/buildability.h"
 #include "phedra/errors.h"
@@ -36,11 +37,11 @@ void add_check_command(CLI::App& app, Context& context) {
                "when a figure exceeds the tolerance or the design is not buildable over the whole interval");
   add_preset_argument(sub, options->preset);
   sub->add_option("--samples", options->check.samples, "Evenly spaced samples of [t_lambda, t_mu], limits included")
-      ->check(CLI::Range(2, 10000000))
+      ->check(whole_number_between(2, 10000000))
       ->capture_default_str();
   sub->add_option("--tolerance", options->check.relative_tolerance,
                   "Largest accepted figure, relative to the model size")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_flag_callback(
       "--closure-only", [options] { options->check.shape = false; },
@@ -51,7 +52,7 @@ void add_check_command(CLI::App& app, Context& context) {
                 "ignores it");
   sub->add_option("--intersection-samples", options->buildability.sweep.samples_per_side,
                   "Buildability: samples from t* to each flexion limit for the collision sweep")
-      ->check(CLI::Range(1, 1000000))
+      ->check(whole_number_between(1, 1000000))
       ->capture_default_str();
   add_size_bound_options(sub, options->buildability.bounds);
   add_thickness_options(sub, options->thickness,

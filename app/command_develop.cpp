@@ -1,6 +1,7 @@
 // phedra develop PATTERN [--direction up|down] [--fold SIGNS] [--fraction F] [-o FILE]... [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/crease_pattern.h"
 #include "phedra/developed_pattern.h"
 #include "phedra/errors.h"
@@ -115,7 +116,7 @@ void add_develop_command(CLI::App& app, Context& context) {
   sub->add_option("--fraction", o->fraction,
                   "The folded state written (fold angles, .json preset): this fraction of the way from flat to the end "
                   "of the motion, in (0, 1)")
-      ->check(CLI::Range(1e-9, 1.0 - 1e-9))
+      ->check(number_between(1e-9, 1.0 - 1e-9))
       ->capture_default_str();
   sub->add_option("-o,--output", o->outputs,
                   "Write .svg or .pdf (the crease pattern to scale, with title, legend and scale bar), .fold (crease "

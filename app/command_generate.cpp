@@ -1,6 +1,7 @@
 // phedra generate PRESET -o FILE(.glb|.gltf|.json) [options]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "motion_parameters.h"
 #include "phedra/errors.h"
 #include "phedra/fold_export.h"
@@ -220,20 +221,20 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "Output file: .glb, .gltf, .fold, .json, .obj or .ply; with --thickness .stl, .3mf or .obj")
       ->required();
   sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
   sub->add_option("--ease", o->ease,
                   "glTF: fraction of --seconds eased at each flexion limit: time is linear in t but there, where the "
                   "distance to the limit grows as the square of time, so that the motion (which moves as its square "
                   "root) keeps a bounded speed and keyframes can follow it; 0: time linear in t throughout")
-      ->check(CLI::Range(0.0, 0.5))
+      ->check(number_between(0.0, 0.5))
       ->capture_default_str();
   sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
   sub->add_option("--tolerance,--hinge-tolerance", o->hinge_tolerance,
                   "glTF: largest distance of a vertex from its exact place between keyframes (and, with --nodes, "
                   "largest opening of a hinge outside the node tree), relative to the model size")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   auto* morph = sub->add_flag("--morph", o->morph,
                               "glTF: morph targets, the default: one mesh, one target per keyframe (at most 250), "
@@ -252,7 +253,7 @@ void add_generate_command(CLI::App& app, Context& context) {
   sub->add_option("--intersection-samples", o->intersection_samples,
                   "Samples from t* to each limit for the collision sweep (--no-self-intersection and the buildability "
                   "warning); default 200, fewer above 2000 panels (at least 24)")
-      ->check(CLI::Range(1, 1000000));
+      ->check(whole_number_between(1, 1000000));
   add_thickness_options(sub, o->thickness,
                         "Thick plates offset to one side of the panels, bevelled at the hinges, written as solids at "
                         "--at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate (docs/design.md, "

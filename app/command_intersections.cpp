@@ -1,6 +1,7 @@
 // phedra intersections PRESET [--samples N] [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/errors.h"
 #include "phedra/buildability.h"
 #include "phedra/self_intersection.h"
@@ -33,7 +34,7 @@ void add_intersections_command(CLI::App& app, Context& context) {
   sub->add_option("--samples", o->sweep.samples_per_side,
                   "Samples from t* to each flexion limit (crowding towards the limit); a collision is then "
                   "bisected to 1e-12 of the interval")
-      ->check(CLI::Range(1, 1000000))
+      ->check(whole_number_between(1, 1000000))
       ->capture_default_str();
   add_size_bound_options(sub, o->bounds);
   sub->add_flag("--json", o->json, "Print JSON instead of text");

@@ -1,6 +1,7 @@
 // phedra metrics PRESET [--samples N] [-o FILE.csv|.json|.svg]... [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/errors.h"
 #include "phedra/metamaterial_metrics.h"
 #include "support.h"
@@ -30,7 +31,7 @@ void add_metrics_command(CLI::App& app, Context& context) {
                  "SVG plot");
   add_preset_argument(sub, o->preset);
   sub->add_option("--samples", o->metrics.samples, "Evenly spread over [t_lambda, t_mu], limits included (t* is added)")
-      ->check(CLI::Range(2, 1000000))
+      ->check(whole_number_between(2, 1000000))
       ->capture_default_str();
   sub->add_option_function<std::string>(
          "--axes", [o](const std::string& name) { o->metrics.axes = parse_metrics_axes(name); },

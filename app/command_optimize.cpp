@@ -2,6 +2,7 @@
 //   [--vary GROUPS] [--no-keep-buildable] [--tol REL] [--max-seconds S] [--closest FILE] [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/mechanics_figures.h"
 #include "phedra/report_values.h"
 #include "phedra/buildability.h"
@@ -84,7 +85,7 @@ void add_optimize_command(CLI::App& app, Context& context) {
                   "distance after the best rigid motion of the points)");
   sub->add_option("--fit-tol", o->fit_tolerance,
                   "The RMS distance that counts as fitting (model units; default 1 % of the model size)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("-o,--output", o->output, "The optimized preset (.json); written only when every target is met")->required();
   sub->add_option("--vary", o->vary, "What may change: a comma-separated list of apex_heights, directions, trajectory")
       ->capture_default_str();
@@ -92,7 +93,7 @@ void add_optimize_command(CLI::App& app, Context& context) {
                 "Do not require the result to be buildable (by default it is, as phedra check says)");
   sub->add_option("--tol", o->optimize.relative_tolerance,
                   "An equality target is met within this fraction of its value (or 0.01, whichever is larger)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_option_function<std::string>(
          "--axes", [o](const std::string& name) { o->optimize.axes = parse_metrics_axes(name); },
@@ -100,7 +101,7 @@ void add_optimize_command(CLI::App& app, Context& context) {
       ->default_str("structural");
   add_size_bound_options(sub, o->optimize.bounds);
   sub->add_option("--max-seconds", o->optimize.max_seconds, "Time for the search; the best found by then is reported")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_option("--seed", o->optimize.seed, "Seed of the perturbed restarts")->capture_default_str();
   sub->add_option("--closest", o->closest, "When the targets are not reached: write the closest design here (.json)");

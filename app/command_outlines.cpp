@@ -1,6 +1,7 @@
 // phedra outlines PRESET -o FILE.pdf|.svg|.png|.dxf [--pieces MODE] [--page SIZE] [--scale S] [--no-tabs]
 
 #include "buildability_warning.h"
+#include "number_checks.h"
 #include "commands.h"
 #include "phedra/cut_sheets.h"
 #include "phedra/errors.h"
@@ -71,10 +72,10 @@ void add_outlines_command(CLI::App& app, Context& context) {
                    "Thick plates cut from sheet material this thick (mm on the sheets' scale): one piece a plate, "
                    "its cut outline inside the bevelled plate of phedra check --thickness, hinge lines, pieces "
                    "numbered in assembly order, an assembly page, the material used (docs/cli.md)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   sub->add_option("--kerf", o->kerf_mm, "With --thickness-mm: the width (mm) the laser or saw burns away; cut paths "
                                         "run half of it outside each piece")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   sub->add_option("--plate-side", o->plate_side, "With --thickness-mm: front, back or auto (as phedra check)")
       ->check(CLI::IsMember({"auto", "front", "back"}))

@@ -1,6 +1,7 @@
 // phedra repair PRESET -o OUT.json [--vary GROUPS] [--require F] [--no-fallback] [--restarts N] [--max-seconds S] [--json]
 
 #include "commands.h"
+#include "number_checks.h"
 #include "phedra/errors.h"
 #include "phedra/number_format.h"
 #include "phedra/preset.h"
@@ -75,7 +76,7 @@ void add_repair_command(CLI::App& app, Context& context) {
   sub->add_option("--require", o->repair.required_fraction,
                   "The part of the flexion interval that must be buildable: from t* this fraction of the way to each "
                   "limit (1: all of it, 0: t* alone)")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(number_between(0.0, 1.0))
       ->capture_default_str();
   sub->add_flag("--no-escalate", o->no_escalate,
                 "With the default --vary: do not try the trajectory too when the heights and directions cannot do it "
@@ -91,10 +92,10 @@ void add_repair_command(CLI::App& app, Context& context) {
   add_size_bound_options(sub, o->repair.bounds);
   sub->add_option("--restarts", o->repair.restarts,
                   "Perturbed starts after the input for the search of simple panels (their set need not be connected)")
-      ->check(CLI::Range(0, 1000))
+      ->check(whole_number_between(0, 1000))
       ->capture_default_str();
   sub->add_option("--max-seconds", o->repair.max_seconds,
-                  "Time for the search (half of it at most for the panel shapes); the best found by then is reported")->check(CLI::PositiveNumber)->capture_default_str();
+                  "Time for the search (half of it at most for the panel shapes); the best found by then is reported")->check(positive_number())->capture_default_str();
   sub->add_option("--closest", o->closest,
                   "When nothing buildable is found: write the closest design to this file (.json), to inspect");
   sub->add_flag("--json", o->json, "Print JSON instead of text");

@@ -1,4 +1,5 @@
 #include "motion_parameters.h"
+#include "number_checks.h"
 
 #include "phedra/assembly.h"
 #include "phedra/errors.h"
@@ -19,7 +20,7 @@ void MotionParameters::add_options(CLI::App* command, std::size_t default_count)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   CLI::Option* count = command->add_option("--count", count_,
                                            "N configurations evenly spread over the interval, limits included")
-                           ->check(CLI::Range(2, 1000000));
+                           ->check(whole_number_between(2, 1000000));
   if (default_count) count->description("N configurations evenly spread over the interval, limits included "
                                         "(default " + std::to_string(default_count) + " when no --t/--fraction)");
 }

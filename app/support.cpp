@@ -1,4 +1,5 @@
 #include "support.h"
+#include "number_checks.h"
 
 #include "phedra/hinge_pins.h"
 
@@ -19,29 +20,29 @@ void add_size_bound_options(CLI::App* command, SizeBounds& bounds) {
   command->add_option("--max-growth", bounds.max_growth,
                       "Buildability: the design's bounding-box diagonal may grow to this many times its size at t* "
                       "over the buildable interval, no further (0: no bound)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   command->add_option("--max-panel-ratio", bounds.max_edge_ratio,
                       "Buildability: a panel whose longest edge is more than this many times the median panel's is "
                       "oversized (0: no bound); a panel thinner than " + format_significant(bounds.min_aspect, 3) +
                       " of its length is a sliver")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
 }
 
 void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::string& what) {
-  CLI::Option* model = command->add_option("--thickness", o.model_units, what + " (model units)")->check(CLI::PositiveNumber);
+  CLI::Option* model = command->add_option("--thickness", o.model_units, what + " (model units)")->check(positive_number());
   CLI::Option* mm = command->add_option("--thickness-mm", o.mm,
                                         "The same in millimetres on the cut sheets' scale (--scale, or --model-size as "
                                         "phedra outlines)")
-                        ->check(CLI::PositiveNumber)
+                        ->check(positive_number())
                         ->excludes(model);
   CLI::Option* scale = command->add_option("--scale", o.scale, "With --thickness-mm: millimetres a model unit")
-                           ->check(CLI::PositiveNumber)
+                           ->check(positive_number())
                            ->needs(mm);
   command->add_option("--model-size", o.model_mm,
                       "With --thickness-mm and no --scale: the model's size in mm (as phedra outlines)")
-      ->check(CLI::PositiveNumber)
+      ->check(positive_number())
       ->needs(mm)
       ->excludes(scale)
       ->capture_default_str();
@@ -49,7 +50,7 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
                       "With a thickness: a gap this wide at every hinge (in the thickness's units: model units, or mm "
                       "with --thickness-mm), each plate's hinge sides moved back by half of it, for a tape, fabric or "
                       "printed-film hinge across it")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_number())
       ->capture_default_str();
   command->add_option("--hinge", o.hinge,
                       "With a thickness: how the plates are hinged: none (plates meet at the hinge lines), gap (a gap at "

@@ -1,6 +1,7 @@
 // The `phedra` command, run in-process: outputs, exit codes and files.
 
 #include "support/test_files.h"
+#include "support/cli_run.h"
 #include "cli.h"
 #include "phedra/phedron.h"
 #include "phedra/preset.h"
@@ -311,4 +312,55 @@ TEST_CASE("check on tubes and arrays: the asymmetric anti-parallelogram fails wi
   const Run grid = phedra_cli({"check", presets + "/grid-3x3.json", "--json"});
   CHECK(grid.code == 0);
   CHECK(json::parse(grid.out)["shared_vertex_groups"] == 120);  // 10 profiles x 12 shared vertices
+}
+
+TEST_CASE("every checked numeric option: one rule for its message, exit 2, never a long number", "[cli][errors]") {
+  // Values each option refuses (0 only where it must be positive); the option's
+  // own rule in words, the value as typed (cut to 20 characters).
+  const std::string preset = presets + "/default.json", out = (fs::temp_directory_path() / "phedra-numeric-x").string();
+  struct Option {
+    std::vector<std::string> command;
+    std::string name, rule;
+    bool zero_refused;
+  };
+  const std::vector<Option> options{
+      {{"check", preset}, "--samples", "a whole number from 2 to 10000000", true},
+      {{"check", preset}, "--thickness", "a positive number", true},
+      {{"check", preset}, "--max-growth", "a number, 0 or more", false},
+      {{"check", preset}, "--max-panel-ratio", "a number, 0 or more", false},
+      {{"check", preset}, "--intersection-samples", "a whole number from 1 to 1000000", true},
+      {{"metrics", preset}, "--samples", "a whole number from 2 to 1000000", true},
+      {{"intersections", preset}, "--samples", "a whole number from 1 to 1000000", true},
+      {{"sample", preset, "-o", out + ".json"}, "--count", "a whole number from 2 to 1000000", true},
+      {{"generate", preset, "-o", out + ".glb"}, "--intersection-samples", "a whole number from 1 to 1000000", true},
+      {{"outlines", preset, "-o", out + ".pdf", "--thickness-mm", "3"}, "--kerf", "a number, 0 or more", false},
+      {{"outlines", preset, "-o", out + ".pdf"}, "--thickness-mm", "a positive number", true},
+      {{"repair", preset, "-o", out + ".json"}, "--require", "a number in [0, 1]", false},
+      {{"repair", preset, "-o", out + ".json"}, "--restarts", "a whole number from 0 to 1000", false},
+      {{"repair", preset, "-o", out + ".json"}, "--max-seconds", "a positive number", true},
+      {{"optimize", preset, "-o", out + ".json", "--target", "flexion_width>=1"}, "--max-seconds", "a positive number", true},
+      {{"optimize", preset, "-o", out + ".json", "--target", "flexion_width>=1"}, "--tol", "a positive number", true},
+      {{"bench"}, "--max-vertices", "a whole number from 1000 to 100000000", true},
+  };
+  const std::regex long_number("[0-9]{21,}");
+  for (const Option& o : options) {
+    std::vector<std::string> values{"-1", "nan", "-inf", "1e400", "abc", "123456789012345678901234567890"};
+    if (o.zero_refused) values.push_back("0");
+    if (o.rule.find("[0, 1]") != std::string::npos) values.push_back("1.5");
+    for (const std::string& value : values) {
+      if (value == "123456789012345678901234567890" && o.rule.find("0 or more") != std::string::npos) continue;  // a valid bound
+      if (value == "123456789012345678901234567890" && o.rule.find("positive") != std::string::npos) continue;
+      std::vector<std::string> args = o.command;
+      args.push_back(o.name);
+      args.push_back(value);
+      const test::Run r = test::phedra_cli(args);
+      CAPTURE(args, r.err);
+      CHECK(r.code == 2);
+      const std::string shown = value.size() <= 20 ? value : value.substr(0, 17) + "...";
+      CHECK_THAT(r.err, Contains(o.name + ": must be " + o.rule + " (got " + shown + ")"));
+      CHECK_FALSE(std::regex_search(r.err, long_number));
+    }
+  }
+  CHECK_FALSE(fs::exists(out + ".json"));
+  CHECK_FALSE(fs::exists(out + ".pdf"));
 }
