@@ -1,6 +1,8 @@
 """phedra from Python (issue 26): the module against the command it mirrors.
 Run by the README's test command (ctest: python_module), or
-    PYTHONPATH=build/python PHEDRA=build/bin/phedra python3 -m pytest tests/python
+    PYTHONPATH=build/python PHEDRA=build/bin/phedra /usr/bin/python3 -m pytest tests/python
+or, as the suite runs them, against the package installed into a fresh venv:
+    bash tests/python/run_installed.sh build build/bin/phedra
 """
 import json
 import os
