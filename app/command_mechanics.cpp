@@ -3,6 +3,7 @@
 //                         [--energy --rest-t T0 | --rest-fraction F0 [--samples N]] [--json] [-o FILE]...
 
 #include "commands.h"
+#include "number_checks.h"
 #include "support.h"
 
 #include "phedra/errors.h"
@@ -163,15 +164,16 @@ void add_mechanics_command(CLI::App& app, Context& context) {
   sub->add_option("--panels", o->panels, "n5b8: a centre node, four spokes and four bending hinges a quad (MERLIN2's "
                                         "default); n4b5: each quad split along its shorter diagonal")
       ->capture_default_str();
-  sub->add_option("--bar", o->bar, "EA of every bar (MERLIN2's manual mode: 1e3)")->capture_default_str();
-  sub->add_option("--fold", o->fold, "KF, the fold hinges' stiffness per unit length (default KB / 10)");
-  sub->add_option("--bend", o->bend, "KB, the bending hinges' stiffness per unit length")->capture_default_str();
+  sub->add_option("--bar", o->bar, "EA of every bar (MERLIN2's manual mode: 1e3)")->check(positive_number())->capture_default_str();
+  sub->add_option("--fold", o->fold, "KF, the fold hinges' stiffness per unit length (default KB / 10)")->check(positive_number());
+  sub->add_option("--bend", o->bend, "KB, the bending hinges' stiffness per unit length")->check(positive_number())->capture_default_str();
   sub->add_option("--material", o->material, "E,NU: calibrate bars and hinges from a plate material (MERLIN2's formulas, "
                                              "n5b8), with --thickness")
       ->delimiter(',')
       ->expected(1, 2);
-  sub->add_option("--thickness", o->thickness, "The plate thickness for --material (model units)");
-  sub->add_option("--length-scale", o->length_scale, "L* of the fold stiffness for --material (default twice the mean fold length)");
+  sub->add_option("--thickness", o->thickness, "The plate thickness for --material (model units)")->check(positive_number());
+  sub->add_option("--length-scale", o->length_scale, "L* of the fold stiffness for --material (default twice the mean fold length)")
+      ->check(positive_number());
   sub->add_option("--modes", o->modes, "How many of the smallest non-rigid modes")->capture_default_str();
   CLI::Option* over = sub->add_option("--over-interval", o->over_interval,
                                       "N configurations over the flexion interval: the smallest modes tracked from one to "

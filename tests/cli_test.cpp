@@ -341,6 +341,11 @@ TEST_CASE("every checked numeric option: one rule for its message, exit 2, never
       {{"optimize", preset, "-o", out + ".json", "--target", "flexion_width>=1"}, "--max-seconds", "a positive number", true},
       {{"optimize", preset, "-o", out + ".json", "--target", "flexion_width>=1"}, "--tol", "a positive number", true},
       {{"bench"}, "--max-vertices", "a whole number from 1000 to 100000000", true},
+      {{"mechanics", preset}, "--bar", "a positive number", true},
+      {{"mechanics", preset}, "--fold", "a positive number", true},
+      {{"mechanics", preset}, "--bend", "a positive number", true},
+      {{"mechanics", preset, "--material", "1000,0.3"}, "--thickness", "a positive number", true},
+      {{"mechanics", preset, "--material", "1000,0.3", "--thickness", "0.05"}, "--length-scale", "a positive number", true},
   };
   const std::regex long_number("[0-9]{21,}");
   for (const Option& o : options) {

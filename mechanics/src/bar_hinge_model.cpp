@@ -25,7 +25,7 @@ PanelModel parse_panel_model(const std::string& name) {
 void StiffnessOptions::validate() const {
   auto positive = [](double v, const std::string& option, const std::string& what) {
     if (!(v > 0.0) || !std::isfinite(v)) {
-      throw InvalidInputError(option, what + " must be positive and finite, got " + format_number(v));
+      throw InvalidInputError(option, "must be a positive number (got " + format_number(v) + "): " + what);
     }
   };
   if (material) {
