@@ -11,6 +11,7 @@
 #include "phedra/errors.h"
 #include "phedra/files.h"
 #include "phedra/fold_export.h"
+#include "phedra/mechanics_figures.h"
 #include "phedra/mechanics_report.h"
 #include "phedra/gltf_export.h"
 #include "phedra/mesh_export.h"
@@ -18,6 +19,7 @@
 #include "phedra/motion_document.h"
 #include "phedra/number_format.h"
 #include "phedra/preset.h"
+#include "phedra/preset_fields.h"
 #include "phedra/repair.h"
 #include "phedra/optimize.h"
 #include "phedra/panel_size.h"
@@ -80,6 +82,25 @@ Numbers numbers(const py::object& object, const char* keyword) {
   }
   throw InvalidInputError(keyword, std::string(keyword) + " must be a number or an array-like of numbers, got " +
                                        py::str(py::type::of(object).attr("__name__")).cast<std::string>());
+}
+
+/// Every figure Design.figures gives, in its order.
+std::vector<std::string> all_figure_names() {
+  std::vector<std::string> names = figure_names();
+  names.insert(names.end(), {"buildable", "buildable_fraction", "thickest_at_t_star"});
+  names.insert(names.end(), mechanics_figure_names().begin(), mechanics_figure_names().end());
+  return names;
+}
+
+void check_figure_names(const std::vector<std::string>& names) {
+  const std::vector<std::string> known = all_figure_names();
+  for (const std::string& n : names) {
+    if (std::find(known.begin(), known.end(), n) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw InvalidInputError("names", "unknown figure \"" + n + "\"; known: " + list);
+    }
+  }
 }
 
 class PyDesign {
@@ -247,6 +268,81 @@ class PyDesign {
     options.samples = samples;
     options.axes = parse_metrics_axes(axes);
     return to_python(metamaterial_metrics(*design_, options).to_json());
+  }
+
+  /// The named figures of the design as made (the atlas's columns, docs/atlas.md):
+  /// metrics' `figures` (with `samples` and `axes` as phedra metrics has them),
+  /// buildable and buildable_fraction (phedra check's buildability), the
+  /// thickest plates that fit at t* for plates of `thickness` (phedra check
+  /// --thickness's thickest_at_t_star) and the mechanics figures; None where
+  /// undefined.
+  py::dict figures(const std::vector<std::string>& names, std::size_t samples, const std::string& axes,
+                   const std::optional<double>& thickness, double max_growth, double max_panel_ratio) const {
+    check_figure_names(names);
+    std::vector<std::string> mechanics;
+    bool metrics = false, build = false;
+    for (const std::string& n : names) {
+      if (is_mechanics_figure(n)) {
+        mechanics.push_back(n);
+      } else if (n == "buildable" || n == "buildable_fraction" || n == "thickest_at_t_star") {
+        build = true;
+      } else {
+        metrics = true;
+      }
+    }
+    std::optional<MetricsReport> report;
+    if (metrics) {
+      MetricsOptions options;
+      options.samples = samples;
+      options.axes = parse_metrics_axes(axes);
+      report = metamaterial_metrics(*design_, options);
+    }
+    std::optional<BuildabilityReport> buildability;
+    if (build) {
+      BuildabilityOptions options;
+      options.bounds.max_growth = max_growth;
+      options.bounds.max_edge_ratio = max_panel_ratio;
+      buildability = assess_buildability(*design_, &preset_object(preset_), options);
+    }
+    std::optional<MechanicsFigures> figures;
+    if (!mechanics.empty()) figures = mechanics_figures(*design_, mechanics);
+    py::dict out;
+    auto number = [](std::optional<double> v) -> py::object {
+      if (!v || !std::isfinite(*v)) return py::none();
+      return py::float_(*v);
+    };
+    for (const std::string& n : names) {
+      if (n == "buildable") {
+        out[n.c_str()] = py::bool_(buildability->buildable());
+      } else if (n == "buildable_fraction") {
+        const auto interval = buildability->interval();
+        out[n.c_str()] = interval ? (interval->second - interval->first) / (document_.t_mu - document_.t_lambda) : 0.0;
+      } else if (n == "thickest_at_t_star") {
+        if (!thickness || !(*thickness > 0.0) || !std::isfinite(*thickness)) {
+          throw InvalidInputError("thickness", "thickest_at_t_star needs thickness= (the plates' thickness, model units, "
+                                               "a positive number)");
+        }
+        if (!buildability->interval()) {
+          out[n.c_str()] = py::none();  // not buildable at t*: no panels to thicken
+          continue;
+        }
+        ThickOptions options;
+        options.find_thickest = true;
+        options.thickness = *thickness;
+        try {
+          out[n.c_str()] = number(check_thickness(*design_, *buildability, options).thickest);
+        } catch (const InvalidInputError&) {
+          out[n.c_str()] = py::none();
+        }
+      } else if (n == "mechanics.bistable") {
+        out[n.c_str()] = py::bool_(figures->bistable);
+      } else if (is_mechanics_figure(n)) {
+        out[n.c_str()] = number(figures->figure(n));
+      } else {
+        out[n.c_str()] = number(report->figure(n));
+      }
+    }
+    return out;
   }
 
   /// phedra mechanics as a dict (its --json), with numpy arrays: the nodes, the
@@ -583,6 +679,10 @@ PyDesign load(const py::object& what) {
 
 PYBIND11_MODULE(_core, m) {
   using namespace phedra::python;
+  using phedra::FigureTarget;
+  using phedra::preset_field_value;
+  using phedra::preset_with_fields;
+  using phedra::InvalidInputError;
   using phedra::python::PyDesign;
   m.doc() = "phedra's compiled core (import phedra): rigid-foldable P-hedra, their exact motion, buildability, "
             "repair and exports (docs/python.md)";
@@ -651,6 +751,14 @@ PYBIND11_MODULE(_core, m) {
            "Whether it can be built and over which part of the motion (phedra check --json's buildability)")
       .def("metrics", &PyDesign::metrics, py::arg("samples") = 101, py::arg("axes") = "structural",
            "Metamaterial figures against t (phedra metrics --json)")
+      .def("figures", &PyDesign::figures, py::arg("names"), py::kw_only(), py::arg("samples") = 101,
+           py::arg("axes") = "structural", py::arg("thickness") = py::none(), py::arg("max_growth") = 10.0,
+           py::arg("max_panel_ratio") = 100.0,
+           "The named figures of the design as made, a dict name -> value (None where undefined): metrics' "
+           "figures (as phedra metrics --json's 'figures', with samples and axes), buildable and "
+           "buildable_fraction (the buildable part of the flexion interval, phedra check), thickest_at_t_star (the "
+           "thickest plates that fit at t*, needs thickness=), the mechanics figures (mechanics.gap, ...); "
+           "phedra.figure_names() lists them")
       .def("mechanics", &PyDesign::mechanics, py::kw_only(), py::arg("t") = py::none(), py::arg("fraction") = py::none(),
            py::arg("panels") = "n5b8", py::arg("bar") = 1e3, py::arg("fold") = py::none(), py::arg("bend") = 0.1,
            py::arg("material") = py::none(), py::arg("thickness") = py::none(), py::arg("modes") = 6,
@@ -689,5 +797,36 @@ PYBIND11_MODULE(_core, m) {
       .def("__repr__", [](const PyDesign& d) {
         return "<phedra.Design '" + d.name() + "': " + d.kind() + ", " + std::to_string(d.vertex_count()) + " vertices>";
       });
+  m.def("figure_names", &all_figure_names, "The names Design.figures (and an atlas's figures) take, in order");
+  m.def(
+      "parse_target",
+      [](const std::string& text) {
+        const FigureTarget t = FigureTarget::parse(text);
+        const char* kind = t.kind == FigureTarget::Kind::equal ? "=" : t.kind == FigureTarget::Kind::at_least ? ">=" : "<=";
+        return py::make_tuple(t.name, kind, t.value);
+      },
+      py::arg("target"),
+      "A target as phedra optimize --target takes it ('poisson.nu_12=-0.8', 'flexion_width>=0.5'): (name, "
+      "'=' | '>=' | '<=', value); InputError for an unknown figure or a value that is not a number");
+  m.def(
+      "preset_field",
+      [](const py::object& preset, const std::string& path, const std::string& field) {
+        return preset_field_value(from_python(preset), path, field.empty() ? path : field);
+      },
+      py::arg("preset"), py::arg("path"), py::arg("field") = "",
+      "The number at a field path of a preset dict ('grid.u_heights[1]', 'trajectory[4][0]'; "
+      "'directions[2].turn' is 0, a turn from the preset's direction, in degrees); InputError (its field "
+      "`field`, default the path) when the preset has no such number or it follows others (a closed tube's "
+      "repeated heights)");
+  m.def(
+      "with_fields",
+      [](const py::object& preset, const py::dict& values) {
+        std::vector<std::pair<std::string, double>> list;
+        for (const auto& [key, value] : values) list.emplace_back(key.cast<std::string>(), value.cast<double>());
+        return to_python(preset_with_fields(from_python(preset), list));
+      },
+      py::arg("preset"), py::arg("values"),
+      "The preset dict with fields set by path ({'grid.u_heights[1]': 0.4, 'directions[2].turn': 10.0}: a "
+      "direction turned about the axis by degrees); a closed tube's tied heights follow");
   m.def("load", &load, py::arg("preset"), "A design from a preset: a path, a dict, or JSON text");
 }

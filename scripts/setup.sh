@@ -7,7 +7,9 @@
 # the glTF exports in tests/blender; its glTF importer needs numpy, which
 # Debian's blender package does not depend on; pybind11 builds the Python module,
 # pytest runs its tests and matplotlib draws the example's plot; Spectra, CHOLMOD (SuiteSparse) and
-# serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS, LAPACK its dense SVD), then the npm packages of web/
+# serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS, LAPACK its dense SVD;
+# SciPy (quasi-random sampling), Dask's distributed, Zarr and xarray run and store
+# the design-space atlases of python/phedra/atlas), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -21,6 +23,7 @@ packages=(
   chromium libegl-mesa0 libgl1-mesa-dri
   blender python3-numpy admesh
   python3-dev python3-pybind11 python3-pytest python3-matplotlib
+  python3-scipy python3-distributed python3-zarr python3-xarray
 )
 
 missing=()

@@ -2,6 +2,7 @@
 
 #include "phedra/errors.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phedra {
@@ -184,6 +185,7 @@ std::vector<double> DesignVariables::start() const {
 json DesignVariables::preset_at(const std::vector<double>& x) const {
   json p = preset_;
   for (std::size_t k = 0; k < variables_.size(); ++k) {
+    if (x[k] == variables_[k].start) continue;
     if (variables_[k].kind == DesignVariable::Kind::length) {
       p.at(lengths_[slot_[k]].pointer) = x[k];
       continue;
@@ -197,11 +199,26 @@ json DesignVariables::preset_at(const std::vector<double>& x) const {
     p.at(turn.pointer) = json::array({c * d[0] + s * cross[0], c * d[1] + s * cross[1], c * d[2] + s * cross[2]});
   }
   for (const Tie& tie : ties_) {
+    if (std::none_of(tie.terms.begin(), tie.terms.end(), [&](const auto& term) { return x[term.first] != variables_[term.first].start; })) {
+      continue;
+    }
     double value = 0.0;
     for (const auto& [k, coefficient] : tie.terms) value += coefficient * x[k];
     p.at(tie.target) = value;
   }
   return p;
+}
+
+std::vector<std::pair<std::string, std::string>> DesignVariables::tied_fields() const {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const Tie& tie : ties_) {
+    std::string rule;
+    for (const auto& [k, coefficient] : tie.terms) {
+      rule += (rule.empty() ? (coefficient < 0.0 ? "-" : "") : (coefficient < 0.0 ? " - " : " + ")) + variables_[k].field;
+    }
+    out.emplace_back(tie.target.to_string(), rule);
+  }
+  return out;
 }
 
 double DesignVariables::distance(const std::vector<double>& x) const {

@@ -42,8 +42,14 @@ class DesignVariables {
   std::size_t size() const { return variables_.size(); }
   std::vector<double> start() const;
 
-  /// The preset with the variables at x (and every tied value following them).
+  /// The preset with the variables at x (and every tied value following them);
+  /// a variable at its start and a tie none of whose variables moved keep the
+  /// preset's own number, bit for bit.
   nlohmann::json preset_at(const std::vector<double>& x) const;
+
+  /// The entries that follow the variables (a closed tube's repeated or
+  /// symmetric heights): {JSON pointer, "apex_heights[0] + apex_heights[2] - apex_heights[1]"}.
+  std::vector<std::pair<std::string, std::string>> tied_fields() const;
 
   /// sqrt(sum ((x_k - start_k) / scale_k)^2): how far x is from the input.
   double distance(const std::vector<double>& x) const;
