@@ -679,7 +679,6 @@ PyDesign load(const py::object& what) {
 
 PYBIND11_MODULE(_core, m) {
   using namespace phedra::python;
-  using phedra::FigureTarget;
   using phedra::preset_field_value;
   using phedra::preset_with_fields;
   using phedra::InvalidInputError;
@@ -798,16 +797,6 @@ PYBIND11_MODULE(_core, m) {
         return "<phedra.Design '" + d.name() + "': " + d.kind() + ", " + std::to_string(d.vertex_count()) + " vertices>";
       });
   m.def("figure_names", &all_figure_names, "The names Design.figures (and an atlas's figures) take, in order");
-  m.def(
-      "parse_target",
-      [](const std::string& text) {
-        const FigureTarget t = FigureTarget::parse(text);
-        const char* kind = t.kind == FigureTarget::Kind::equal ? "=" : t.kind == FigureTarget::Kind::at_least ? ">=" : "<=";
-        return py::make_tuple(t.name, kind, t.value);
-      },
-      py::arg("target"),
-      "A target as phedra optimize --target takes it ('poisson.nu_12=-0.8', 'flexion_width>=0.5'): (name, "
-      "'=' | '>=' | '<=', value); InputError for an unknown figure or a value that is not a number");
   m.def(
       "preset_field",
       [](const py::object& preset, const std::string& path, const std::string& field) {

@@ -26,7 +26,8 @@ from . import _evaluate
 from ._space import Space, input_error
 from ._store import Store, same_space
 
-__all__ = ["Space", "sweep", "query", "preset", "design", "open_atlas", "Interrupted", "SweepFailed"]
+__all__ = ["Space", "sweep", "query", "parse_target", "distances", "preset", "design", "open_atlas", "plot",
+           "Interrupted", "SweepFailed"]
 
 
 class Interrupted(KeyboardInterrupt):
@@ -39,10 +40,10 @@ class SweepFailed(_core.Error):
 
 
 def default_chunk(designs):
-    """Rows a chunk (a task and a Zarr chunk): about 64 chunks, 1 to 250 rows;
+    """Rows a chunk (a task and a Zarr chunk): about 64 chunks of 16 to 250 rows;
     fixed by the number of designs alone, so the store is the same whatever the
     workers."""
-    return max(1, min(250, math.ceil(designs / 64)))
+    return max(min(16, designs), min(250, math.ceil(designs / 64)))
 
 
 def _space_key(space_json):
@@ -221,6 +222,14 @@ def _on_dask(store, pending, setup, key, scheduler, workers, bar):
 
 # -- using an atlas ------------------------------------------------------------
 
+def plot(atlas, x, y, output):
+    """Draw variable y against x (figures or parameters) over the atlas's valid
+    designs to a .png, .svg or .pdf: buildable ones filled, the others hollow,
+    the base design a star."""
+    from ._plot import plot as draw
+    draw(atlas, x, y, output)
+
+
 def open_atlas(atlas):
     """The atlas as an xarray.Dataset (dimension `design`); a path or a Dataset."""
     import xarray
@@ -228,7 +237,7 @@ def open_atlas(atlas):
         return atlas
     if not os.path.exists(os.path.join(str(atlas), ".zgroup")):
         raise FileError(f"{atlas}: not a Zarr atlas (no such store)")
-    return xarray.open_zarr(str(atlas))
+    return xarray.open_zarr(str(atlas), chunks=None)  # numpy arrays read when used (no dask graph)
 
 
 def _stored_space(ds):
@@ -267,6 +276,26 @@ def distances(atlas):
     return np.sqrt(total)
 
 
+def parse_target(text, field="target"):
+    """'poisson.nu_12=-0.8' -> (name, '=', -0.8), as phedra optimize --target
+    reads it ('NAME>=V', 'NAME<=V'; 'mechanics.bistable' alone: (name, '>=', 1))."""
+    if text == "mechanics.bistable":
+        return text, ">=", 1.0
+    for kind in (">=", "<=", "="):
+        name, sep, value = text.partition(kind)
+        if sep:
+            break
+    else:
+        raise input_error(field, f"\"{text}\": expected NAME=VALUE, NAME>=VALUE or NAME<=VALUE")
+    try:
+        number = float(value)
+    except ValueError:
+        number = math.nan
+    if not math.isfinite(number):
+        raise input_error(field, f"\"{text}\": the value \"{value}\" is not a number")
+    return name, kind, number
+
+
 def query(atlas, targets, *, tol=0.02, limit=None):
     """The designs of the atlas meeting every target (phedra optimize's syntax:
     'poisson.nu_12=-0.8' within max(tol x |value|, 0.01), 'flexion_width>=0.5',
@@ -278,10 +307,7 @@ def query(atlas, targets, *, tol=0.02, limit=None):
         targets = [targets]
     keep = ds["done"].values & ds["valid"].values
     for i, text in enumerate(targets):
-        try:
-            name, kind, value = _core.parse_target(text)
-        except InputError as e:
-            raise input_error(f"targets[{i}]", str(e).split(": ", 1)[-1]) from None
+        name, kind, value = parse_target(text, f"targets[{i}]")
         if name not in space["figures"]:
             raise input_error(f"targets[{i}]", f"the atlas has no figure {name} (its figures: "
                                                f"{', '.join(space['figures'])})")

@@ -22,7 +22,7 @@ def _sweep(argv):
     p.add_argument("--workers", type=int, metavar="N", help="workers of the local cluster (default one per core; "
                                                             "0: no Dask, this process)")
     p.add_argument("--chunk", type=int, metavar="ROWS", help="designs a task and a stored chunk (default: about 64 "
-                                                             "chunks, at most 250 rows)")
+                                                             "chunks of 16 to 250 rows)")
     p.add_argument("--quiet", action="store_true", help="no progress line")
     p.add_argument("--json", action="store_true", help="the summary as JSON")
     a = p.parse_args(argv)
@@ -82,7 +82,7 @@ def _query(argv):
 
 
 def _core_name(target):
-    from .._core import parse_target
+    from . import parse_target
     return parse_target(target)[0]
 
 

@@ -85,6 +85,7 @@ def _watch_parent(parent):
 
 
 def child_main():
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is for the sweep: this process ends with its pipe
     threading.Thread(target=_watch_parent, args=(os.getppid(),), daemon=True).start()
     fd, out = sys.stdin.buffer.fileno(), sys.stdout.buffer
     sys.stdout = sys.stderr  # nothing but messages on the pipe

@@ -54,7 +54,8 @@ class Store:
         parent = os.path.dirname(os.path.abspath(path))
         temporary = os.path.join(parent, f".{os.path.basename(path)}.{uuid.uuid4().hex}.partial")
         try:
-            group = zarr.open_group(temporary, mode="w-")
+            os.mkdir(temporary)  # the folder's own error (a missing or read-only parent), before Zarr's KeyError
+            group = zarr.open_group(temporary, mode="a")
             n = space.designs
             for k, p in enumerate(space.paths):
                 _array(group, p, values[:, k], chunk=chunk, n=n)
@@ -77,9 +78,10 @@ class Store:
                                                "where done is true"})
             zarr.consolidate_metadata(group.store)
             os.rename(temporary, path)
-        except OSError as e:
+        except (OSError, KeyError) as e:  # Zarr says KeyError when a file cannot be written
             shutil.rmtree(temporary, ignore_errors=True)
-            raise FileError(f"{path}: cannot write the atlas ({e.strerror or e})") from None
+            why = e.strerror if isinstance(e, OSError) and e.strerror else f"{type(e).__name__}: {e}"
+            raise FileError(f"{path}: cannot write the atlas ({why})") from None
         except BaseException:
             shutil.rmtree(temporary, ignore_errors=True)
             raise
