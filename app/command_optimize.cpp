@@ -1,5 +1,5 @@
 // phedra optimize PRESET --target NAME=VALUE|NAME>=VALUE|NAME<=VALUE ... [--fit FILE] -o OUT.json
-//   [--vary GROUPS] [--no-keep-buildable] [--tol REL] [--max-seconds S] [--closest FILE] [--json]
+//   [--vary GROUPS] [--no-keep-buildable] [--tol REL] [--max-seconds S] [--start ATLAS.zarr] [--closest FILE] [--json]
 
 #include "commands.h"
 #include "number_checks.h"
@@ -22,7 +22,7 @@ namespace phedra::cli {
 namespace {
 
 struct OptimizeCommandOptions {
-  std::string preset, output, closest, fit;
+  std::string preset, output, closest, fit, start;
   std::vector<std::string> targets;
   std::string vary = "apex_heights,directions";
   std::string axes = "structural";
@@ -55,6 +55,7 @@ nlohmann::json result_json(const OptimizeResult& r, const std::string& written) 
           {"evaluations", r.evaluations},
           {"seconds", r.seconds},
           {"notes", r.notes},
+          {"started_from", r.started_from.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.started_from)},
           {"written", written.empty() ? nlohmann::json(nullptr) : nlohmann::json(written)}};
 }
 
@@ -104,6 +105,9 @@ void add_optimize_command(CLI::App& app, Context& context) {
       ->check(positive_number())
       ->capture_default_str();
   sub->add_option("--seed", o->optimize.seed, "Seed of the perturbed restarts")->capture_default_str();
+  sub->add_option("--start", o->start,
+                  "A design-space atlas (python3 -m phedra.atlas, docs/atlas.md) of this design: the search starts "
+                  "from the best of its 8 rows nearest the targets (or the input, if better)");
   sub->add_option("--closest", o->closest, "When the targets are not reached: write the closest design here (.json)");
   sub->add_flag("--json", o->json, "Print JSON instead of text");
   sub->callback([o, &context] {
@@ -129,6 +133,7 @@ void add_optimize_command(CLI::App& app, Context& context) {
       fit.tolerance = o->fit_tolerance > 0.0 ? o->fit_tolerance : 0.01 * bounded_model_size(loaded.design, o->optimize.bounds);
       o->optimize.fit = fit;
     }
+    if (!o->start.empty()) o->optimize.starts = atlas_starts(o->start, o->optimize, 8);
     OptimizeResult r = optimize(loaded.preset, o->optimize);
     const std::string name = loaded.preset.value("name", std::string("unnamed"));
     std::string written;
@@ -184,6 +189,7 @@ void add_optimize_command(CLI::App& app, Context& context) {
       if (!written.empty()) out << "wrote " << written << '\n';
       if (!r.reached && written.empty()) out << "nothing written (--closest FILE writes the closest design)\n";
       for (const std::string& note : r.notes) out << "note: " << note << '\n';
+      if (!o->start.empty()) out << "started from: " << (r.started_from.empty() ? "the input (better than the atlas's rows)" : r.started_from + " of " + o->start) << '\n';
       out << "search: " << r.evaluations << " designs built, " << format_short(r.seconds) << " s\n";
     }
     context.exit_code = r.reached ? 0 : static_cast<int>(ExitCode::check_failed);

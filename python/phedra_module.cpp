@@ -515,7 +515,7 @@ class PyDesign {
   /// None, result dict) as phedra optimize --json.
   py::tuple optimize(const py::object& targets, const py::object& fit, std::optional<double> fit_tol,
                      const std::string& vary, bool keep_buildable, double tol, const std::string& axes,
-                     double max_seconds, unsigned seed) const {
+                     double max_seconds, unsigned seed, const py::object& start) const {
     OptimizeOptions options;
     if (py::isinstance<py::str>(targets)) {
       options.targets.push_back(FigureTarget::parse(targets.cast<std::string>()));
@@ -544,6 +544,14 @@ class PyDesign {
     options.axes = parse_metrics_axes(axes);
     options.max_seconds = max_seconds;
     options.seed = seed;
+    if (!start.is_none()) {
+      const std::string atlas = py::str(py::module_::import("os").attr("fspath")(start)).cast<std::string>();
+      try {
+        options.starts = atlas_starts(atlas, options, 8);
+      } catch (const InvalidInputError& e) {
+        throw InvalidInputError("start", e.reason());
+      }
+    }
     OptimizeResult r;
     {
       py::gil_scoped_release release;
@@ -570,6 +578,7 @@ class PyDesign {
     result["evaluations"] = r.evaluations;
     result["seconds"] = r.seconds;
     result["notes"] = r.notes;
+    result["started_from"] = r.started_from.empty() ? py::none() : py::cast(r.started_from);
     const nlohmann::json named = named_optimized(r.preset, name(), vary, r);
     result["closest"] = r.reached ? py::none() : to_python(named);
     py::object optimized = py::none();
@@ -774,8 +783,10 @@ PYBIND11_MODULE(_core, m) {
       .def("optimize", &PyDesign::optimize, py::arg("targets") = py::none(), py::arg("fit") = py::none(),
            py::arg("fit_tol") = py::none(), py::arg("vary") = "apex_heights,directions", py::arg("keep_buildable") = true,
            py::arg("tol") = 0.02, py::arg("axes") = "structural", py::arg("max_seconds") = 60.0, py::arg("seed") = 1u,
+           py::arg("start") = py::none(),
            "The nearest design whose figures meet the targets ('poisson.nu_12=-0.8', a list of them, or a dict of "
-           "equalities) and/or that passes near fit points: (Design or None, result dict) as phedra optimize")
+           "equalities) and/or that passes near fit points: (Design or None, result dict) as phedra optimize; "
+           "start=ATLAS.zarr (a path): from the best of the atlas's rows, as --start")
       .def("thick", &PyDesign::thick, py::arg("thickness"), py::arg("side") = "auto", py::arg("hinge_gap") = 0.0,
            "Thick plates as `phedra check --thickness` has them: side, bevels, volume, the thick interval and what "
            "ends it (a dict)")

@@ -36,7 +36,11 @@ unity() {  # unity NAME FILE...: $out/unity/NAME.cpp, rewritten only when its li
 }
 sources=()
 for m in "${modules[@]}"; do
-  unity "$m" "$m"/src/*.cpp
+  files=()
+  for f in "$m"/src/*.cpp; do
+    case "$f" in *atlas*) ;; *) files+=("$f") ;; esac  # atlases are read by the command (zlib), not the pages
+  done
+  unity "$m" "${files[@]}"
   sources+=("$out/unity/$m.cpp")
 done
 unity exporters "${exporter_sources[@]}"

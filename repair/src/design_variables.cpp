@@ -209,6 +209,30 @@ json DesignVariables::preset_at(const std::vector<double>& x) const {
   return p;
 }
 
+std::vector<double> DesignVariables::values_of(const json& other, const std::string& field) const {
+  std::vector<double> x(variables_.size());
+  for (std::size_t k = 0; k < variables_.size(); ++k) {
+    const DesignVariable& v = variables_[k];
+    const Pointer at(v.pointer);
+    const bool turn = v.kind == DesignVariable::Kind::turn;
+    if (!other.contains(at) || (turn ? !is_number_array(other.at(at)) || other.at(at).size() != 3 : !other.at(at).is_number())) {
+      throw InvalidInputError(field, "its designs have no " + v.field + (turn ? " (a direction vector)" : " (a number)") +
+                                         " as the preset has: not variations of it");
+    }
+    if (!turn) {
+      x[k] = other.at(at).get<double>();
+      continue;
+    }
+    // The turn about the axis from the input's direction d to e: atan2((a x d) . e, d . e).
+    const std::vector<double>& d = turns_[slot_[k]].direction;
+    const std::vector<double> e = other.at(at).get<std::vector<double>>();
+    const std::vector<double>& a = axis_;
+    const double cross[3] = {a[1] * d[2] - a[2] * d[1], a[2] * d[0] - a[0] * d[2], a[0] * d[1] - a[1] * d[0]};
+    x[k] = std::atan2(cross[0] * e[0] + cross[1] * e[1] + cross[2] * e[2], d[0] * e[0] + d[1] * e[1] + d[2] * e[2]);
+  }
+  return x;
+}
+
 std::vector<std::pair<std::string, std::string>> DesignVariables::tied_fields() const {
   std::vector<std::pair<std::string, std::string>> out;
   for (const Tie& tie : ties_) {

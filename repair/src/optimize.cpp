@@ -351,8 +351,25 @@ OptimizeResult optimize(const json& preset, const OptimizeOptions& given) {
   std::mt19937_64 rng(options.seed);
   const double search_share = options.keep_buildable ? 0.8 : 1.0;  // the rest: what binds, when not reached
   std::vector<double> best;
+  // From the input, or the best of the given starts (an atlas's rows) by the search's own value.
+  std::vector<double> first = variables.start();
+  if (!options.starts.empty()) {
+    double first_value = search.value(first);
+    for (const auto& [label, start_preset] : options.starts) {
+      std::vector<double> x = variables.values_of(start_preset, "--start");
+      for (std::size_t k = 0; k < x.size(); ++k) {
+        if (variables.variables()[k].fixed) x[k] = variables.variables()[k].start;
+      }
+      const double value = search.value(x);
+      if (value < first_value) {
+        first_value = value;
+        first = x;
+        r.started_from = label;
+      }
+    }
+  }
   std::optional<std::vector<double>> answer =
-      main.run(variables.start(), time_left() - (1.0 - search_share) * options.max_seconds, rng, best);
+      main.run(first, time_left() - (1.0 - search_share) * options.max_seconds, rng, best);
   std::size_t tidy_evaluations = 0;
   if (answer) {
     // Tidy: the search moves every variable a little. Changes below a share of

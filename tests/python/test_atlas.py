@@ -291,3 +291,36 @@ def test_field_paths_set_what_they_name():
     assert np.dot(turned, g["directions"][4]) == pytest.approx(0.0, abs=1e-12)
     assert phedra._core.with_fields(g, {"directions[4].turn": 0.0}) == g  # bit for bit
     assert phedra._core.with_fields(g, {"trajectory[2][1]": 1.5})["trajectory"][2][1] == 1.5
+
+
+def test_optimize_starts_from_the_atlas_best_rows(work):
+    """phedra optimize --start ATLAS.zarr (and Python's start=): the search
+    begins at the atlas's row nearest the target, which the command reads
+    from the Zarr store itself."""
+    out = os.path.join(work, "a.zarr")
+    atlas.sweep(space(designs=64, figures=["metrics", "buildability"]), out, workers=0, progress=False)
+    ds = atlas.open_atlas(out)
+    ok = ds["valid"].values & ds["buildable"].values
+    row = int(np.flatnonzero(ok)[np.argmax(ds["poisson.nu_12"].values[ok])])  # the atlas's extreme
+    target = f"poisson.nu_12={ds['poisson.nu_12'].values[row]:.6f}"
+    result = os.path.join(work, "opt.json")
+    run = subprocess.run([PHEDRA, "optimize", preset("default.json"), "--target", target, "-o", result,
+                          "--start", out, "--max-seconds", "20", "--json"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr
+    report = json.loads(run.stdout)
+    value = ds["poisson.nu_12"].values[row]
+    meeting = {f"atlas row {k}" for k in np.flatnonzero(ok & (np.abs(ds["poisson.nu_12"].values - value)
+                                                               <= max(0.02 * abs(value), 0.01)))}
+    assert report["reached"] and report["started_from"] in meeting, (report["started_from"], meeting)
+    _, r = phedra.load(preset("default.json")).optimize(target, start=out, max_seconds=20)
+    assert r["reached"] and r["started_from"] == report["started_from"]
+
+    bad = subprocess.run([PHEDRA, "optimize", preset("default.json"), "--target", target, "-o", result,
+                          "--start", work], capture_output=True, text=True)
+    assert bad.returncode == 2 and "--start: " + work + ": not an atlas" in bad.stderr, bad.stderr
+    bad = subprocess.run([PHEDRA, "optimize", preset("default.json"), "--target", "mechanics.gap>=3", "-o", result,
+                          "--start", out], capture_output=True, text=True)
+    assert bad.returncode == 2 and "the atlas has none of the targets' figures (mechanics.gap)" in bad.stderr
+    grid = subprocess.run([PHEDRA, "optimize", preset("grid-3x3.json"), "--target", target, "-o", result,
+                           "--start", out], capture_output=True, text=True)
+    assert grid.returncode == 2 and "not variations of it" in grid.stderr, grid.stderr

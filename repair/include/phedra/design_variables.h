@@ -51,6 +51,12 @@ class DesignVariables {
   /// symmetric heights): {JSON pointer, "apex_heights[0] + apex_heights[2] - apex_heights[1]"}.
   std::vector<std::pair<std::string, std::string>> tied_fields() const;
 
+  /// The values of the variables that give `other`, a preset of the same
+  /// layout (an atlas row of this design): its numbers at the variables' fields,
+  /// a direction's turn from the input's about the axis. InvalidInputError(field)
+  /// naming a field `other` lacks.
+  std::vector<double> values_of(const nlohmann::json& other, const std::string& field) const;
+
   /// sqrt(sum ((x_k - start_k) / scale_k)^2): how far x is from the input.
   double distance(const std::vector<double>& x) const;
 

@@ -80,6 +80,9 @@ struct OptimizeOptions {
   MetricsAxes axes = MetricsAxes::structural;
   SizeBounds bounds;
   unsigned seed = 1;
+  /// Designs to start from besides the input (an atlas's best rows, atlas_starts):
+  /// {label, preset of the input's layout}; the search begins at the best of them.
+  std::vector<std::pair<std::string, nlohmann::json>> starts;
 };
 
 /// One target's outcome, as the metrics code computes it on the result.
@@ -102,7 +105,17 @@ struct OptimizeResult {
   double distance = 0.0;  ///< from the input, relative to the model size
   std::vector<FieldChange> changes;  ///< the fields that differ from the input
   std::vector<std::string> notes;
+  std::string started_from;  ///< the start's label ("atlas row 17"), empty: the input
 };
+
+/// The rows of the atlas at `path` (docs/atlas.md) an optimization best starts
+/// from: done and valid (and buildable, when keep_buildable and the atlas has
+/// it), ranked by the targets' errors over their tolerances on the atlas's
+/// figures (NaN: far), then by row; at most `count`, each {"atlas row K",
+/// its preset}. InvalidInputError("--start") when the atlas has none of the
+/// targets' figures or no such row.
+std::vector<std::pair<std::string, nlohmann::json>> atlas_starts(const std::string& path, const OptimizeOptions& options,
+                                                                 std::size_t count);
 
 /// `result` named "NAME-optimized" (or "NAME-closest" when not reached) with a
 /// description of the targets, what was varied and its buildability.
