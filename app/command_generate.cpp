@@ -221,7 +221,7 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "Output file: .glb, .gltf, .fold, .json, .obj or .ply; with --thickness .stl, .3mf or .obj")
       ->required();
   sub->add_option("--seconds", o->seconds, "glTF: duration of the motion from t_lambda to t_mu")
-      ->check(positive_number())
+      ->check(number_between(0.001, 1e6))
       ->capture_default_str();
   sub->add_flag("--ping-pong", o->ping_pong, "glTF: play t_lambda -> t_mu -> t_lambda");
   sub->add_option("--ease", o->ease,

@@ -174,10 +174,13 @@ void add_mechanics_command(CLI::App& app, Context& context) {
   sub->add_option("--thickness", o->thickness, "The plate thickness for --material (model units)")->check(positive_number());
   sub->add_option("--length-scale", o->length_scale, "L* of the fold stiffness for --material (default twice the mean fold length)")
       ->check(positive_number());
-  sub->add_option("--modes", o->modes, "How many of the smallest non-rigid modes")->capture_default_str();
+  sub->add_option("--modes", o->modes, "How many of the smallest non-rigid modes")
+      ->check(whole_number_between(1, 1000))
+      ->capture_default_str();
   CLI::Option* over = sub->add_option("--over-interval", o->over_interval,
                                       "N configurations over the flexion interval: the smallest modes tracked from one to "
-                                      "the next, crossings flagged, the gap (CSV, JSON, SVG or PNG with -o)");
+                                      "the next, crossings flagged, the gap (CSV, JSON, SVG or PNG with -o)")
+                            ->check(whole_number_between(2, 100000));
   sub->add_flag("--energy", o->energy,
                                       "The exact energy landscape of the motion from a rest state (--rest-t or "
                                       "--rest-fraction): E(t), dE/dt, equilibria, bistability, forces (CSV, JSON, SVG or PNG with -o)")
@@ -185,6 +188,7 @@ void add_mechanics_command(CLI::App& app, Context& context) {
   CLI::Option* rest_t = sub->add_option("--rest-t", o->rest_t, "The rest state T0 (stress-free: how the piece was made) for --energy");
   sub->add_option("--rest-fraction", o->rest_fraction, "The rest state as a fraction of the flexion interval")->excludes(rest_t);
   sub->add_option("--samples", o->samples, "--energy: samples over the flexion interval, both limits included (the rest state is added)")
+      ->check(whole_number_between(2, 1000000))
       ->capture_default_str();
   sub->add_option("--axes", o->axes, "--energy: the axes of the forces, as `phedra metrics` (structural or xyz)")
       ->capture_default_str();

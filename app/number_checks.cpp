@@ -57,6 +57,13 @@ CLI::Validator number_between(double lo, double hi) {
       "in " + range, "RANGE");
 }
 
+CLI::Validator zero_or_at_least(double lo) {
+  const std::string what = "0 (no bound) or a number, " + bound(lo) + " or more";
+  return CLI::Validator(
+      [=](std::string& text) { return check(text, what, [=](double v) { return v == 0.0 || v >= lo; }); },
+      "0|>=" + bound(lo), "BOUND");
+}
+
 CLI::Validator whole_number_between(std::int64_t lo, std::int64_t hi) {
   const std::string range = std::to_string(lo) + " to " + std::to_string(hi);
   return CLI::Validator(

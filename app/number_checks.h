@@ -15,6 +15,8 @@ CLI::Validator positive_number();
 CLI::Validator non_negative_number();
 /// A finite number in [lo, hi].
 CLI::Validator number_between(double lo, double hi);
+/// 0 (no bound) or a finite number >= lo (help: 0|>=lo): a bound that 0 turns off.
+CLI::Validator zero_or_at_least(double lo);
 /// A whole number in [lo, hi] (for counts).
 CLI::Validator whole_number_between(std::int64_t lo, std::int64_t hi);
 

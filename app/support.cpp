@@ -20,13 +20,13 @@ void add_size_bound_options(CLI::App* command, SizeBounds& bounds) {
   command->add_option("--max-growth", bounds.max_growth,
                       "Buildability: the design's bounding-box diagonal may grow to this many times its size at t* "
                       "over the buildable interval, no further (0: no bound)")
-      ->check(non_negative_number())
+      ->check(zero_or_at_least(1.0))
       ->capture_default_str();
   command->add_option("--max-panel-ratio", bounds.max_edge_ratio,
                       "Buildability: a panel whose longest edge is more than this many times the median panel's is "
                       "oversized (0: no bound); a panel thinner than " + format_significant(bounds.min_aspect, 3) +
                       " of its length is a sliver")
-      ->check(non_negative_number())
+      ->check(zero_or_at_least(1.0))
       ->capture_default_str();
 }
 
@@ -72,6 +72,12 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
   out.side = plate_side_from_string(o.side);
   const double unit = o.model_units ? 1.0 : 1.0 / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
   out.thickness = (o.model_units ? *o.model_units : *o.mm) * unit;
+  if (const double resolved = 1e-6 * design.assembly.model_size(); o.mm && out.thickness < resolved) {
+    // In the user's unit: the plates' own check says it in model units, for --thickness.
+    throw InvalidInputError("--thickness-mm", "plates " + format_human(*o.mm) + " mm thick are below what the model "
+                                              "resolves (1e-6 of its size, " + format_human(resolved / unit) +
+                                              " mm on this scale): such plates are the panels themselves");
+  }
   out.hinge_gap = o.hinge_gap * unit;
   if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap = 0.25 * out.thickness;
   if (o.hinge == "pin") out.hinge_gap = std::max(out.hinge_gap, pin_hinge_gap(out.thickness));

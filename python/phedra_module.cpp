@@ -103,6 +103,16 @@ void check_figure_names(const std::vector<std::string>& names) {
   }
 }
 
+/// The size bounds as the command takes them: 0 (no bound) or 1 or more.
+void check_size_bounds(double max_growth, double max_panel_ratio) {
+  for (const auto& [value, name] : {std::pair{max_growth, "max_growth"}, std::pair{max_panel_ratio, "max_panel_ratio"}}) {
+    if (!(value == 0.0 || value >= 1.0) || !std::isfinite(value)) {
+      throw InvalidInputError(name, "must be 0 (no bound) or a number, 1 or more (got " +
+                                        format_number(value) + ")");
+    }
+  }
+}
+
 class PyDesign {
  public:
   PyDesign(json preset, std::string source) : preset_(std::move(preset)), source_(std::move(source)) {
@@ -247,11 +257,7 @@ class PyDesign {
   }
 
   py::object buildability(double max_growth, double max_panel_ratio) const {
-    for (const auto& [value, name] : {std::pair{max_growth, "max_growth"}, std::pair{max_panel_ratio, "max_panel_ratio"}}) {
-      if (!(value >= 0.0) || !std::isfinite(value)) {
-        throw InvalidInputError(name, std::string(name) + " must be a non-negative number (0: no bound), got " + format_number(value));
-      }
-    }
+    check_size_bounds(max_growth, max_panel_ratio);
     BuildabilityOptions options;
     options.bounds.max_growth = max_growth;
     options.bounds.max_edge_ratio = max_panel_ratio;
@@ -298,6 +304,7 @@ class PyDesign {
       report = metamaterial_metrics(*design_, options);
     }
     std::optional<BuildabilityReport> buildability;
+    check_size_bounds(max_growth, max_panel_ratio);
     if (build) {
       BuildabilityOptions options;
       options.bounds.max_growth = max_growth;

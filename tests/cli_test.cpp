@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -326,8 +327,8 @@ TEST_CASE("every checked numeric option: one rule for its message, exit 2, never
   const std::vector<Option> options{
       {{"check", preset}, "--samples", "a whole number from 2 to 10000000", true},
       {{"check", preset}, "--thickness", "a positive number", true},
-      {{"check", preset}, "--max-growth", "a number, 0 or more", false},
-      {{"check", preset}, "--max-panel-ratio", "a number, 0 or more", false},
+      {{"check", preset}, "--max-growth", "0 (no bound) or a number, 1 or more", false},
+      {{"check", preset}, "--max-panel-ratio", "0 (no bound) or a number, 1 or more", false},
       {{"check", preset}, "--intersection-samples", "a whole number from 1 to 1000000", true},
       {{"metrics", preset}, "--samples", "a whole number from 2 to 1000000", true},
       {{"intersections", preset}, "--samples", "a whole number from 1 to 1000000", true},
@@ -352,8 +353,9 @@ TEST_CASE("every checked numeric option: one rule for its message, exit 2, never
     std::vector<std::string> values{"-1", "nan", "-inf", "1e400", "abc", "123456789012345678901234567890"};
     if (o.zero_refused) values.push_back("0");
     if (o.rule.find("[0, 1]") != std::string::npos) values.push_back("1.5");
+    if (o.rule.find("1 or more") != std::string::npos) values.push_back("0.5");
     for (const std::string& value : values) {
-      if (value == "123456789012345678901234567890" && o.rule.find("0 or more") != std::string::npos) continue;  // a valid bound
+      if (value == "123456789012345678901234567890" && o.rule.find("or more") != std::string::npos) continue;  // a valid bound
       if (value == "123456789012345678901234567890" && o.rule.find("positive") != std::string::npos) continue;
       std::vector<std::string> args = o.command;
       args.push_back(o.name);
@@ -368,4 +370,78 @@ TEST_CASE("every checked numeric option: one rule for its message, exit 2, never
   }
   CHECK_FALSE(fs::exists(out + ".json"));
   CHECK_FALSE(fs::exists(out + ".pdf"));
+}
+
+TEST_CASE("every numeric option of every command at 0, -1, nan, 1e-300 and 1e300: exit 0, 1 or 2, never 4",
+          "[cli][errors]") {
+  // The options are read from each command's --help (every FLOAT, INT or UINT
+  // option, so a new one is swept too), each given with what it needs; `view`
+  // serves until interrupted and is left out. No value a user can type is an
+  // internal error, and no message holds a number longer than 20 characters.
+  const std::string preset = presets + "/default.json";
+  const std::string out = (fs::temp_directory_path() / "phedra-every-option").string();
+  const std::map<std::string, std::vector<std::string>> commands{
+      {"info", {"info", preset}},
+      {"sample", {"sample", preset, "-o", out + ".json"}},
+      {"check", {"check", preset}},
+      {"repair", {"repair", preset, "-o", out + ".json"}},
+      {"optimize", {"optimize", preset, "-o", out + ".json", "--target", "flexion_width>=0.01"}},
+      {"intersections", {"intersections", preset}},
+      {"metrics", {"metrics", preset}},
+      {"mechanics", {"mechanics", preset}},
+      {"outlines", {"outlines", preset, "-o", out + ".svg"}},
+      {"develop", {"develop", presets + "/developed/flat-pattern.json", "-o", out + "-crease.svg"}},
+      {"generate", {"generate", preset, "-o", out + ".glb"}},
+      {"bench", {"bench", "--only", "evaluate", "--quick"}},
+  };
+  // What an option needs beside the command's base (otherwise refused for that, not for its value).
+  auto needs = [](const std::string& command, const std::string& option) -> std::vector<std::string> {
+    if (command == "mechanics" && (option == "--thickness" || option == "--length-scale")) {
+      return option == "--thickness" ? std::vector<std::string>{"--material", "1000,0.3"}
+                                     : std::vector<std::string>{"--material", "1000,0.3", "--thickness", "0.05"};
+    }
+    if (command == "mechanics" && option == "--samples") return {"--energy"};
+    if (command == "outlines" && option == "--kerf") return {"--thickness-mm", "3"};
+    if ((option == "--scale" || option == "--model-size") && command != "outlines" && command != "develop") {
+      return {"--thickness-mm", "3"};
+    }
+    if (option == "--hinge-gap") return {"--thickness", "0.01"};
+    return {};
+  };
+  const std::regex numeric(R"(^\s+(?:-\w,)?(--[\w-]+) (?:FLOAT|INT|UINT)\b)");
+  const std::regex long_number("[0-9]{21,}");
+  std::size_t swept = 0;
+  for (const auto& [command, base] : commands) {
+    const test::Run help = test::phedra_cli({command, "--help"});
+    REQUIRE(help.code == 0);
+    std::istringstream lines(help.out);
+    for (std::string line; std::getline(lines, line);) {
+      std::smatch m;
+      if (!std::regex_search(line, m, numeric)) continue;
+      const std::string option = m[1];
+      if (command == "mechanics" && option == "--material") continue;  // E,NU: two numbers, its own test
+      ++swept;
+      for (const std::string value : {"0", "-1", "nan", "1e-300", "1e300"}) {
+        std::vector<std::string> args = base;
+        for (const std::string& a : needs(command, option)) args.push_back(a);
+        args.push_back(option);
+        args.push_back(value);
+        const test::Run r = test::phedra_cli(args);
+        CAPTURE(args, r.code, r.err);
+        CHECK((r.code == 0 || r.code == 1 || r.code == 2));
+        CHECK_FALSE(std::regex_search(r.err, long_number));
+        CHECK_FALSE(std::regex_search(r.out, long_number));
+      }
+    }
+  }
+  CHECK(swept >= 50);
+  // Values past any use that the sweep's five do not reach.
+  const test::Run kerf = test::phedra_cli({"outlines", preset, "-o", out + ".svg", "--thickness-mm", "3", "--kerf", "1e9"});
+  CHECK(kerf.code == 2);
+  CHECK_THAT(kerf.err, Contains("fits the page in no direction: a larger --page, a smaller --scale or --model-size, or "
+                                "a smaller --kerf"));
+  const test::Run thin = test::phedra_cli({"check", preset, "--thickness-mm", "1e-9"});
+  CHECK(thin.code == 2);
+  CHECK_THAT(thin.err, Contains("--thickness-mm: plates 1e-09 mm thick are below what the model resolves"));
+  for (const char* extension : {".json", ".svg", "-crease.svg", ".glb"}) fs::remove(out + extension);
 }

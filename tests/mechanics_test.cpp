@@ -392,7 +392,7 @@ TEST_CASE("phedra mechanics: JSON fields, files, and every bad option a clear er
       {{"--bend", "nan"}, "--bend"},
       {{"--panels", "n6b9"}, "--panels"},
       {{"--modes", "0"}, "--modes"},
-      {{"--modes", "100000"}, "--modes: must be between 1 and"},
+      {{"--modes", "100000"}, "--modes: must be a whole number from 1 to 1000 (got 100000)"},
       {{"--energy"}, "--rest-t"},
       {{"--energy", "--rest-t", "99"}, "outside the flexion interval"},
       {{"--energy", "--rest-fraction", "1.5"}, "fraction"},
@@ -403,7 +403,7 @@ TEST_CASE("phedra mechanics: JSON fields, files, and every bad option a clear er
       {{"--material", "1000,0.6", "--thickness", "0.1"}, "Poisson"},
       {{"--material", "1000,0.3", "--thickness", "0.1", "--panels", "n4b5"}, "n5b8 panels only"},
       {{"--thickness", "0.1"}, "only with --material"},
-      {{"--over-interval", "1"}, "at least 2"},
+      {{"--over-interval", "1"}, "--over-interval: must be a whole number from 2 to 100000 (got 1)"},
       {{"-o", "x.csv"}, "--over-interval or --energy"},
       {{"-o", "x.stl"}, "unknown format"},
   };

@@ -1,5 +1,7 @@
 #include "phedra/buildability.h"
 
+#include "phedra/field_hints.h"
+
 #include "phedra/number_format.h"
 
 #include <algorithm>
@@ -108,6 +110,8 @@ nlohmann::json BuildabilityReport::to_json() const {
   const auto range = interval();
   nlohmann::json crossing = nlohmann::json::array();
   for (std::size_t m : self_crossing_members) crossing.push_back(m);
+  nlohmann::json collision = nlohmann::json::array();
+  for (const FieldHint& h : collision_hints) collision.push_back(hint_json(h));
   return {{"buildable", buildable()},
           {"summary", summary()},
           {"panels", panels},
@@ -119,6 +123,7 @@ nlohmann::json BuildabilityReport::to_json() const {
           {"sliver", count(PanelShape::sliver)},
           {"invalid_panels", list},
           {"self_crossing_members", crossing},
+          {"collision_hints", collision},
           {"swept", swept},
           {"buildable_interval", range ? nlohmann::json{range->first, range->second} : nlohmann::json(nullptr)},
           {"flexion_interval", {t_lambda, t_mu}},
@@ -172,6 +177,12 @@ std::ostream& operator<<(std::ostream& out, const BuildabilityReport& r) {
   if (r.invalid.size() > detail) {
     out << "  ... and " << r.invalid.size() - detail << " more (--json lists every panel with its cause)\n";
   }
+  if (!r.collision_hints.empty()) {
+    out << "    change: ";
+    for (std::size_t h = 0; h < r.collision_hints.size(); ++h) out << (h ? "; or " : "") << describe(r.collision_hints[h]);
+    out << (r.motion.at_t_star->kind == Collision::Kind::hinge ? " (to open that hinge to 10 degrees)" : " (to part those panels)")
+        << '\n';
+  }
   if (r.swept && !r.motion.at_t_star) {
     if (r.motion.lower) out << "  below t = " << format_human(r.motion.lower->t) << ": " << describe(*r.motion.lower, several) << '\n';
     if (r.motion.upper) out << "  above t = " << format_human(r.motion.upper->t) << ": " << describe(*r.motion.upper, several) << '\n';
@@ -218,6 +229,9 @@ BuildabilityReport assess_buildability(const Design& design, const nlohmann::jso
     r.motion.panels = r.panels;
     r.motion.model_size = a.model_size();
     r.motion.at_t_star = self_intersection_at_t_star(design, sweep);
+  }
+  if (r.motion.at_t_star && preset != nullptr && options.diagnosis.hints && r.panels_simple()) {
+    r.collision_hints = collision_hints(*preset, design, *r.motion.at_t_star);
   }
   return r;
 }

@@ -134,6 +134,16 @@ class CollisionDetector {
     return out;
   }
 
+  /// The opening of the hinge between mesh faces fa and fb at x (none when no
+  /// hinge joins them).
+  std::optional<double> opening_between(std::size_t fa, std::size_t fb, const Points& x) const {
+    for (const Hinge& h : hinges_) {
+      const std::size_t a = valid_[h.a], b = valid_[h.b];
+      if ((a == fa && b == fb) || (a == fb && b == fa)) return opening(h, x);
+    }
+    return std::nullopt;
+  }
+
   /// The first hinge folded shut at x (opening within angle_tolerance of 0 or
   /// 2 pi: the check at t*), leaving out those whose two panels (valid
   /// indices) both have `unmoved` set (their opening is the one last tested).

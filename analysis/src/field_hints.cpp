@@ -193,4 +193,46 @@ std::vector<std::vector<FieldHint>> field_hints(const json& preset, const Design
   return out;
 }
 
+std::vector<FieldHint> collision_hints(const json& preset, const Design& design, const Collision& collision) {
+  const double margin = collision_margin_at_t_star(design, collision);
+  if (!std::isfinite(margin)) return {};
+  const double goal = collision.kind == Collision::Kind::hinge ? collision_hint_opening : 0.0;
+  const std::size_t faces = panel_mesh(design).faces.size();
+  struct Best {
+    double cost = std::numeric_limits<double>::infinity();
+    FieldHint hint;
+  };
+  std::array<Best, 3> best;
+  for (const DesignField& field : design_fields(preset, bounded_model_size(design))) {
+    const double value = preset.at(field.pointer).get<double>();
+    const double h = 1e-6 * std::max(std::abs(value), field.scale);
+    for (const double step : {h, -h}) {
+      json changed = preset;
+      changed.at(field.pointer) = value + step;
+      double moved = 0.0;
+      try {
+        const Design d = design_from_json(changed);
+        if (panel_mesh(d).faces.size() != faces) continue;
+        moved = collision_margin_at_t_star(d, collision);
+      } catch (const Error&) {
+        continue;  // the change breaks an assumption
+      }
+      const double gain = (moved - margin) / std::abs(step);  // per unit of change this way
+      if (!(gain > 1e-12) || !std::isfinite(gain)) continue;
+      const double change = (step > 0.0 ? 1.0 : -1.0) * (goal - margin) / gain;
+      const double cost = std::abs(change) / field.scale;
+      Best& b = best[static_cast<int>(field.group)];
+      // Beyond the field's own scale (the model size, a direction's length) a
+      // first-order change says nothing: no hint.
+      if (std::isfinite(change) && cost <= 1.0 && cost < b.cost) b = {cost, {field.name, value, change}};
+    }
+  }
+  std::sort(best.begin(), best.end(), [](const Best& x, const Best& y) { return x.cost < y.cost; });
+  std::vector<FieldHint> out;
+  for (int g = 0; g < 2; ++g) {
+    if (std::isfinite(best[g].cost)) out.push_back(best[g].hint);
+  }
+  return out;
+}
+
 }  // namespace phedra

@@ -266,6 +266,16 @@ std::optional<Collision> self_intersection_at_t_star(const Design& design, const
   return hit ? hit : detector.panels(x, t);
 }
 
+double collision_margin_at_t_star(const Design& design, const Collision& c) {
+  const CollisionDetector detector(design, {});
+  const Points x = detector.positions(design.assembly.t_star());
+  if (c.kind == Collision::Kind::hinge) {
+    const std::optional<double> angle = detector.opening_between(c.a.face, c.b.face, x);
+    return angle ? std::min(*angle, two_pi - *angle) : std::numeric_limits<double>::quiet_NaN();
+  }
+  return -detector.deepest(x).second / design.assembly.model_size();
+}
+
 std::pair<double, double> intersection_free_interval(const SelfIntersectionReport& r) {
   if (r.at_t_star) {
     throw InvalidInputError("--no-self-intersection", "the configuration at t* = " + format_number(r.t_star) +

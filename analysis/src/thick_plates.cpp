@@ -133,6 +133,11 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
   }
   if (side == PlateSide::automatic) throw Error(ExitCode::internal, "ThickPlates: choose the side first (front or back)");
   const Assembly& assembly = design.assembly;
+  if (const double resolved = 1e-6 * assembly.model_size(); thickness < resolved) {
+    throw InvalidInputError("--thickness", "a plate " + format_human(thickness) + " thick is below what the model "
+                                           "resolves (1e-6 of its size, " + format_human(resolved) +
+                                           "): such plates are the panels themselves");
+  }
   tolerance_ = 1e-9 * assembly.model_size();
   const double s = side == PlateSide::front ? 1.0 : -1.0;
   const Points x0 = positions(assembly.t_star());

@@ -66,8 +66,10 @@ Placement fitting_points(const std::vector<Vec2>& points, const Box2& content) {
     }
     if (try_box(Box2{s0 * axis + t0 * up, axis, s1 - s0, t1 - t0}, out)) return out;
   }
-  throw Error(ExitCode::internal, "a piece of " + format_significant(smallest.width) + " x " + format_significant(smallest.height) +
-                                      " mm fits the page in no direction");
+  throw InvalidInputError("--page", "a piece of " + format_significant(smallest.width) + " x " +
+                                       format_significant(smallest.height) +
+                                       " mm (its kerf included) fits the page in no direction: a larger --page, a "
+                                       "smaller --scale or --model-size, or a smaller --kerf");
 }
 
 /// The piece's placement with its called-out labels; when they make it too

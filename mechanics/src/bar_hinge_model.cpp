@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -209,6 +210,29 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
     }
   }
   if (options.material) calibrate_from_material(*options.material, panels, positions_, bars_, hinges_);
+  check_stiffness_spread(options);
+}
+
+void BarHingeModel::check_stiffness_spread(const StiffnessOptions& options) const {
+  // Bars (EA) and hinges (k per unit length) have the same units; K's smallest
+  // eigenvalues cannot be told from rounding when they span more than this, and
+  // beyond 1e100 (or under 1e-100) its entries overflow (or vanish).
+  constexpr double spread = 1e12, extreme = 1e100;
+  double lo = std::numeric_limits<double>::infinity(), hi = 0.0;
+  for (const Bar& b : bars_) lo = std::min(lo, b.stiffness), hi = std::max(hi, b.stiffness);
+  for (const Hinge& h : hinges_) lo = std::min(lo, h.stiffness), hi = std::max(hi, h.stiffness);
+  if (hi == 0.0) return;
+  if (hi / lo <= spread && hi <= extreme && lo >= 1.0 / extreme) return;
+  const std::string range = "the bars' and hinges' stiffnesses span " + format_human(lo) + " to " + format_human(hi);
+  if (options.material) {
+    throw InvalidInputError("--thickness", range + " with this plate thickness (" +
+                                               format_human(options.material->thickness) +
+                                               "): they must lie within 1e12 of each other (a plate between about "
+                                               "1e-6 and 1 times the model size) and between 1e-100 and 1e100");
+  }
+  throw InvalidInputError("--bar", range + " (--bar " + format_human(options.bar) + ", --fold " +
+                                       format_human(options.fold_value()) + ", --bend " + format_human(options.bend) +
+                                       "): they must lie within 1e12 of each other, and between 1e-100 and 1e100");
 }
 
 void BarHingeModel::place_centres(Points& out) const {

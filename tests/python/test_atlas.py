@@ -4,6 +4,7 @@ re-checked by the command, and every bad space refused before anything is
 written. Run as tests/python/test_phedra.py says."""
 import json
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -141,6 +142,14 @@ def test_a_sweep_on_a_dask_cluster_with_a_worker_killed_equals_one_process(work)
             assert (value is None and np.isnan(stored)) or value == stored, (row, name)
 
 
+def test_the_default_local_cluster_gives_the_atlas_of_one_process(work):
+    s = space(designs=64)
+    atlas.sweep(s, os.path.join(work, "one.zarr"), workers=0, progress=False)
+    summary = atlas.sweep(s, os.path.join(work, "local.zarr"), workers=2, progress=False)
+    assert summary["computed_chunks"] == 4
+    assert_same_atlas(os.path.join(work, "one.zarr"), os.path.join(work, "local.zarr"))
+
+
 # -- resuming --------------------------------------------------------------------
 
 def test_an_interrupted_sweep_resumed_equals_an_uninterrupted_one(work):
@@ -163,6 +172,7 @@ def test_an_interrupted_sweep_resumed_equals_an_uninterrupted_one(work):
     _, err = p.communicate(60)
     assert p.returncode == 130, err
     assert "the same command continues" in err
+    assert re.search(r"atlas: \d+/120 designs \(\d+ %\), [0-9.]+ designs/s, \d+ s left\n", err), err  # progress
     before = done_rows()
     assert 32 <= before < 120
     g = zarr.open_group(out, mode="r")

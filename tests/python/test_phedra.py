@@ -415,4 +415,4 @@ def test_errors_name_python_keywords_not_command_options():
     for kwargs, field in [({"max_growth": -1.0}, "max_growth"), ({"max_panel_ratio": float("nan")}, "max_panel_ratio")]:
         with pytest.raises(phedra.InputError) as e:
             d.buildability(**kwargs)
-        assert e.value.field == field and field + " must be a non-negative number" in str(e.value)
+        assert e.value.field == field and field + ": must be 0 (no bound) or a number, 1 or more" in str(e.value)

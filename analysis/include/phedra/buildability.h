@@ -56,6 +56,9 @@ struct BuildabilityReport {
   /// Members whose kind crosses itself at every t (anti-parallelogram tubes:
   /// their L_0 is a crossed four-bar, MATH.md section 6): not a mistake in the numbers.
   std::vector<std::size_t> self_crossing_members;
+  /// When the configuration at t* collides (and hints were asked for, with the
+  /// preset): the fields that open the hinge or separate the panels (field_hints.h).
+  std::vector<FieldHint> collision_hints;
 
   std::size_t count(PanelShape shape) const;
   bool panels_simple() const { return invalid.empty(); }

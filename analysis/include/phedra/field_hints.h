@@ -8,6 +8,7 @@
 #include "phedra/assembly_mesh.h"
 #include "phedra/design.h"
 #include "phedra/panel_diagnosis.h"
+#include "phedra/self_intersection.h"
 
 #include <nlohmann/json.hpp>
 
@@ -51,5 +52,16 @@ struct HintGoal {
 std::vector<std::vector<FieldHint>> field_hints(const nlohmann::json& preset, const Design& design,
                                                 const std::vector<MemberFace>& faces,
                                                 const std::vector<HintGoal>& goals = {});
+
+/// The opening a hint for a hinge shut at t* aims at (10 degrees).
+constexpr double collision_hint_opening = 0.17453292519943295;
+
+/// Hints for a collision at t* (`collision`, as self_intersection_at_t_star
+/// finds it on `design`, built from `preset`): the fields whose first-order
+/// change opens a shut hinge to collision_hint_opening, or separates
+/// penetrating panels (collision_margin_at_t_star up to 0); each field's change
+/// tried both ways (the margin has a kink where the collision starts). Up to
+/// two, from different field groups, smallest change relative to its scale first.
+std::vector<FieldHint> collision_hints(const nlohmann::json& preset, const Design& design, const Collision& collision);
 
 }  // namespace phedra

@@ -85,6 +85,13 @@ SelfIntersectionReport find_self_intersections(const Design& design, const SelfI
 /// The configuration at t* alone (one snapshot, no sweep): its first collision.
 std::optional<Collision> self_intersection_at_t_star(const Design& design, const SelfIntersectionOptions& options = {});
 
+/// How far the configuration at t* is from a collision there (`c`, as
+/// self_intersection_at_t_star found it), as a number a change of the design
+/// drives up: for a hinge, its opening from shut (radians, min(angle, 2 pi -
+/// angle)); for panels, minus the sum of every penetration at t* over the model
+/// size (0: none). NaN when the design has no such hinge or panels.
+double collision_margin_at_t_star(const Design& design, const Collision& c);
+
 /// "panel 3 (strip 0, column 3) and panel 9 (strip 1, column 2) penetrate", naming
 /// members when there are several; `contact`: a touch at a flexion limit ("touch (no more)").
 std::string describe(const Collision& collision, bool several_members, bool contact = false);

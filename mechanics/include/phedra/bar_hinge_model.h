@@ -118,6 +118,10 @@ class BarHingeModel {
   Eigen::SparseMatrix<double> stiffness() const;
 
  private:
+  /// InvalidInputError (--bar, or --thickness with a material) when the
+  /// stiffnesses span more than 1e12 or leave [1e-100, 1e100].
+  void check_stiffness_spread(const StiffnessOptions& options) const;
+
   /// The centres follow their panels: out's first nodes are set.
   void place_centres(Points& out) const;
   ModelMesh mesh_;

@@ -184,6 +184,8 @@ class Space:
             raise input_error("options.axes", f"must be structural or principal (got {json.dumps(out['axes'])})")
         for key in ("max_growth", "max_panel_ratio"):
             out[key] = _number(out[key], f"options.{key}", minimum=0)
+            if 0 < out[key] < 1:
+                raise input_error(f"options.{key}", f"must be 0 (no bound) or a number, 1 or more (got {out[key]:g})")
         out["time_limit"] = _number(out["time_limit"], "options.time_limit", positive=True)
         if "thickest_at_t_star" in self.figures:
             if out["thickness"] is None:
