@@ -123,7 +123,8 @@ void add_develop_command(CLI::App& app, Context& context) {
                   "pattern, FOLD with M/V) or .json (the folded preset); repeatable")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   CLI::Option* scale = sub->add_option("--scale", o->scale, "Crease pattern drawings: millimetres per model unit "
-                                                            "(default: the pattern fills about 170 x 220 mm)");
+                                                            "(default: the pattern fills about 170 x 220 mm)")
+                           ->check(positive_number());
   sub->add_flag("--json", o->json, "Print JSON instead of text");
   sub->callback([o, scale, &context] {
     const std::optional<double> drawing_scale = scale->count() ? std::optional<double>(o->scale) : std::nullopt;

@@ -230,7 +230,8 @@ void add_generate_command(CLI::App& app, Context& context) {
                   "root) keeps a bounded speed and keyframes can follow it; 0: time linear in t throughout")
       ->check(number_between(0.0, 0.5))
       ->capture_default_str();
-  sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)");
+  sub->add_option("--at", o->static_t, "glTF: a static export at this t (no animation); OBJ/PLY: the t to write (default t*)")
+      ->check(finite_number());
   sub->add_option("--tolerance,--hinge-tolerance", o->hinge_tolerance,
                   "glTF: largest distance of a vertex from its exact place between keyframes (and, with --nodes, "
                   "largest opening of a hinge outside the node tree), relative to the model size")

@@ -159,8 +159,11 @@ void add_mechanics_command(CLI::App& app, Context& context) {
       "motion's stiffness and the mobility; over the interval (--over-interval), or the exact energy landscape from a "
       "rest state (--energy)");
   add_preset_argument(sub, o->preset);
-  CLI::Option* t = sub->add_option("--t", o->t, "The configuration: a motion parameter t in [t_lambda, t_mu] (default t*)");
-  sub->add_option("--fraction", o->fraction, "The configuration as a fraction F of the flexion interval")->excludes(t);
+  CLI::Option* t = sub->add_option("--t", o->t, "The configuration: a motion parameter t in [t_lambda, t_mu] (default t*)")
+                       ->check(finite_number());
+  sub->add_option("--fraction", o->fraction, "The configuration as a fraction F of the flexion interval")
+      ->check(number_between(0.0, 1.0))
+      ->excludes(t);
   sub->add_option("--panels", o->panels, "n5b8: a centre node, four spokes and four bending hinges a quad (MERLIN2's "
                                         "default); n4b5: each quad split along its shorter diagonal")
       ->capture_default_str();
@@ -185,8 +188,11 @@ void add_mechanics_command(CLI::App& app, Context& context) {
                                       "The exact energy landscape of the motion from a rest state (--rest-t or "
                                       "--rest-fraction): E(t), dE/dt, equilibria, bistability, forces (CSV, JSON, SVG or PNG with -o)")
                             ->excludes(over);
-  CLI::Option* rest_t = sub->add_option("--rest-t", o->rest_t, "The rest state T0 (stress-free: how the piece was made) for --energy");
-  sub->add_option("--rest-fraction", o->rest_fraction, "The rest state as a fraction of the flexion interval")->excludes(rest_t);
+  CLI::Option* rest_t = sub->add_option("--rest-t", o->rest_t, "The rest state T0 (stress-free: how the piece was made) for --energy")
+                            ->check(finite_number());
+  sub->add_option("--rest-fraction", o->rest_fraction, "The rest state as a fraction of the flexion interval")
+      ->check(number_between(0.0, 1.0))
+      ->excludes(rest_t);
   sub->add_option("--samples", o->samples, "--energy: samples over the flexion interval, both limits included (the rest state is added)")
       ->check(whole_number_between(2, 1000000))
       ->capture_default_str();

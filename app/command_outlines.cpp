@@ -59,14 +59,17 @@ void add_outlines_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   sub->add_option("--page", o->page, "Page size: a4, letter, a3 or WxH in mm (e.g. 300x200)")->capture_default_str();
   CLI::Option* scale = sub->add_option("--scale", o->scale, "Millimetres on the sheet per model unit (default: the model size becomes "
-                                       "--model-size mm)");
+                                       "--model-size mm)")
+                           ->check(positive_number());
   sub->add_option("--model-size", o->sheets.model_mm, "Without --scale: the model's size (bounding-box diagonal at "
                                                       "t*) on paper, in mm")
+      ->check(positive_number())
       ->capture_default_str();
   sub->add_flag("!--no-tabs", o->sheets.tabs, "No glue tabs on the seams");
   sub->add_flag("--tabs", o->sheets.tabs, "Glue tabs on the seams (the default)");
   sub->add_option("--tab-depth", o->sheets.tab_depth, "Tab depth relative to its seam's length, in (0, 0.5); at "
                                                       "most 6 mm")
+      ->check(number_inside(0.0, 0.5))
       ->capture_default_str();
   sub->add_option("--thickness-mm", o->thickness_mm,
                    "Thick plates cut from sheet material this thick (mm on the sheets' scale): one piece a plate, "

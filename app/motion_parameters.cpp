@@ -11,12 +11,14 @@ namespace phedra::cli {
 void MotionParameters::add_options(CLI::App* command, std::size_t default_count) {
   default_count_ = default_count;
   t_option_ = command->add_option("--t", t_, "A motion parameter t in [t_lambda, t_mu] (repeatable)")
+                  ->check(finite_number())
                   ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   fraction_option_ =
       command
           ->add_option("--fraction", fraction_,
                        "A fraction F of the flexion interval: t = t_lambda + F (t_mu - t_lambda); 0 and 1 are the "
                        "limits (repeatable)")
+          ->check(number_between(0.0, 1.0))
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   CLI::Option* count = command->add_option("--count", count_,
                                            "N configurations evenly spread over the interval, limits included")

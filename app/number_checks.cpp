@@ -37,6 +37,20 @@ std::string bound(double v) { return format_significant(v, 6); }
 
 }  // namespace
 
+CLI::Validator finite_number() {
+  return CLI::Validator([](std::string& text) { return check(text, "a number", [](double) { return true; }); },
+                        "FINITE", "FINITE");
+}
+
+CLI::Validator number_inside(double lo, double hi) {
+  const std::string range = "(" + bound(lo) + ", " + bound(hi) + ")";
+  return CLI::Validator(
+      [=](std::string& text) {
+        return check(text, "a number in " + range, [=](double v) { return v > lo && v < hi; });
+      },
+      "in " + range, "RANGE");
+}
+
 CLI::Validator positive_number() {
   return CLI::Validator([](std::string& text) { return check(text, "a positive number", [](double v) { return v > 0.0; }); },
                         "POSITIVE", "POSITIVE");

@@ -9,6 +9,10 @@
 
 namespace phedra::cli {
 
+/// A finite number (help: FINITE): nan and inf refused.
+CLI::Validator finite_number();
+/// A finite number in the open interval (lo, hi).
+CLI::Validator number_inside(double lo, double hi);
 /// A finite number > 0 (help: POSITIVE).
 CLI::Validator positive_number();
 /// A finite number >= 0 (help: NONNEGATIVE).

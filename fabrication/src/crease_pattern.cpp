@@ -105,6 +105,10 @@ CreaseDrawing crease_drawing(const CreasePattern& c, std::optional<double> scale
   const double w = std::max(hi_x - lo_x, 1e-9), h = std::max(hi_z - lo_z, 1e-9);
   CreaseDrawing d;
   d.scale = scale ? *scale : std::min(170.0 / w, 220.0 / h);
+  if (const double across = std::max(w, h) * d.scale; !(across <= 1e7)) {
+    throw InvalidInputError("--scale", "the pattern would be " + format_significant(across) +
+                                           " mm across: more than 10 km (a smaller --scale)");
+  }
   // Margins: 12 mm left (apex names beside the axis), 10 mm elsewhere; 30 mm header, 10 mm footer.
   const double left = 12.0, margin = 10.0, header = 30.0, footer = 10.0;
   d.size = Vec2(std::max(w * d.scale + left + margin, 190.0), h * d.scale + header + footer + 2.0 * margin);

@@ -516,6 +516,11 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
   base.page = options.page;
   // The size of the panels that go on the sheets (an oversized panel's 1e8 would make every piece a speck).
   base.scale = options.scale ? *options.scale : options.model_mm / bounded_model_size(design);
+  if (const double across = base.scale * bounded_model_size(design); !(across <= 1e7)) {
+    throw InvalidInputError(options.scale ? "--scale" : "--model-size",
+                            "the model would be " + format_significant(across) + " mm across on the sheets: more "
+                            "than 10 km (a smaller " + std::string(options.scale ? "--scale" : "--model-size") + ")");
+  }
   if (options.plates) {
     const PlateCut& cut = *options.plates;
     if (!(cut.thickness_mm > 0.0) || !std::isfinite(cut.thickness_mm)) {
