@@ -334,3 +334,13 @@ def test_optimize_starts_from_the_atlas_best_rows(work):
     grid = subprocess.run([PHEDRA, "optimize", preset("grid-3x3.json"), "--target", target, "-o", result,
                            "--start", out], capture_output=True, text=True)
     assert grid.returncode == 2 and "not variations of it" in grid.stderr, grid.stderr
+
+
+def test_the_example_spaces_of_the_docs_are_valid():
+    spaces = {name: atlas.Space(os.path.join(ROOT, "examples", "atlas", name))
+              for name in ("default-space.json", "grid-3x3-space.json")}
+    assert spaces["default-space.json"].designs == 512
+    grid = spaces["grid-3x3-space.json"]
+    assert grid.designs == 16 * 16 * 4 and "thickest_at_t_star" in grid.figures
+    values = grid.values()
+    assert values.shape == (1024, 3) and values[0, 0] == -1.7 and values[-1, 0] == -1.1  # ends exact
