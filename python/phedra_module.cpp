@@ -175,7 +175,7 @@ class PyDesign {
     const double* in = values.data();
     double* to = out.mutable_data();
     for (py::ssize_t i = 0; i < values.size(); ++i) to[i] = one(in[i]);
-    return std::move(out);
+    return out;
   }
 
   /// t at fraction f of the flexion interval; InvalidInputError naming `keyword` outside [0, 1].

@@ -12,6 +12,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -328,23 +329,45 @@ TEST_CASE("metrics plots: axes with units and round ticks, the interval's share,
   const std::vector<std::string> y = texts_of_class(svg, "y-tick"), x = texts_of_class(svg, "x-tick");
   // Two plots: each with its own y ticks and the same t ticks.
   CHECK(texts_of_class(svg, "y-label") ==
-        std::vector<std::string>{"ratio to the value at t* (dimensionless)", "Poisson's ratio (dimensionless)"});
+        std::vector<std::string>{"ratio to the value at t* (dimensionless)", "Poisson's ratio (dimensionless, symmetric log)"});
   CHECK(texts_of_class(svg, "x-label").size() == 2);
   CHECK_THAT(texts_of_class(svg, "x-label")[0], Contains("t: height of the moving apex (model units)"));
   CHECK(texts_of_class(svg, "fraction-tick") ==
         std::vector<std::string>{"0 %", "25 %", "50 %", "75 %", "100 %", "0 %", "25 %", "50 %", "75 %", "100 %"});
   REQUIRE(x.size() % 2 == 0);
   check_round_ticks(std::vector<std::string>(x.begin(), x.begin() + static_cast<long>(x.size() / 2)));
-  // The Poisson plot of grid-3x3 is clipped: its axis stops at +-10, the clipping is stated and marked.
+  // The Poisson plot of grid-3x3 (issue 39): on a symmetric log scale every value is on it (nu_12 and
+  // nu_13 pass through infinity where L1 is stationary, nu_23 lies beyond 10 over a third of the
+  // interval), the poles drawn as dashed lines, the values at the flexion limits marked apart.
   const std::size_t split = svg.find("Effective Poisson");
   const std::vector<std::string> y1 = texts_of_class(svg.substr(0, split), "y-tick"),
                                  y2 = texts_of_class(svg.substr(split), "y-tick");
   check_round_ticks(y1);
-  check_round_ticks(y2);
-  CHECK(y2.front() == "-10");
-  CHECK(y2.back() == "10");
-  CHECK(texts_of_class(svg, "clip-note").size() == 1);
-  CHECK_THAT(svg, Contains("class=\"clipped\""));
+  const std::vector<std::string> linear{"-1", "0", "1"};  // +-0.5 too when the axis spans few decades
+  CHECK(std::search(y2.begin(), y2.end(), linear.begin(), linear.end()) != y2.end());
+  CHECK(std::find(y2.begin(), y2.end(), "10") != y2.end());
+  CHECK(std::find(y2.begin(), y2.end(), "-10") != y2.end());
+  CHECK(texts_of_class(svg, "clip-note").empty());
+  CHECK(svg.find("class=\"clipped\"") == std::string::npos);
+  CHECK(texts_of_class(svg, "scale-note").size() == 1);
+  const std::string poisson_part = svg.substr(split);
+  std::size_t poles = 0, limits = 0;
+  for (std::size_t at = poisson_part.find("class=\"pole\""); at != std::string::npos; at = poisson_part.find("class=\"pole\"", at + 1)) ++poles;
+  for (std::size_t at = poisson_part.find("class=\"limit-value\""); at != std::string::npos; at = poisson_part.find("class=\"limit-value\"", at + 1)) ++limits;
+  CHECK(poles >= 1);
+  CHECK(limits >= 2);
+  CHECK_THAT(poisson_part, Contains("L1 stationary"));
+  // The pole lies where nu_12 changes sign through infinity: near t = -1.45.
+  {
+    const MetricsReport m = metamaterial_metrics(load_design(presets + "/grid-3x3.json"), {});
+    bool near = false;
+    for (std::size_t k = 0; k + 1 < m.samples.size(); ++k) {
+      const auto& a = m.samples[k].strain_rate[0];
+      const auto& b = m.samples[k + 1].strain_rate[0];
+      if (a && b && *a * *b < 0.0) near = near || std::abs(m.samples[k].t - (-1.45)) < 0.05;
+    }
+    CHECK(near);
+  }
   CHECK(svg.find("not-buildable") == std::string::npos);  // buildable over the whole interval
   // A design buildable over part of its interval: the rest shaded, in both plots, and in the legend.
   REQUIRE(phedra_cli({"metrics", std::string(PHEDRA_TEST_DATA_DIR) + "/partly-buildable.json", "-o", (dir / "p.svg").string()}).code == 0);

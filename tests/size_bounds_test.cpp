@@ -136,7 +136,12 @@ TEST_CASE("the growth bound holds at every sample of the buildable interval and 
           "[size-bounds]") {
   std::mt19937_64 rng(24);
   int bound_ended = 0, designs = 0;
-  for (int k = 0; k < 40; ++k) {
+#ifdef PHEDRA_SANITIZE_BUILD
+  const int drawn = 12;  // the code paths (a sweep is about 10x slower there)
+#else
+  const int drawn = 40;
+#endif
+  for (int k = 0; k < drawn; ++k) {
     const json preset = disturbed(rng, k);
     std::optional<Design> d;
     try {
@@ -166,8 +171,8 @@ TEST_CASE("the growth bound holds at every sample of the buildable interval and 
       }
     }
   }
-  CHECK(designs >= 30);
-  CHECK(bound_ended >= 10);  // the bound binds on many of them at 1.002 and 1.01 (folding changes the bounding box by a few per cent)
+  CHECK(designs >= drawn * 3 / 4);
+  CHECK(bound_ended >= drawn / 4);  // the bound binds on many of them at 1.002 and 1.01 (folding changes the bounding box by a few per cent)
 }
 
 TEST_CASE("check, intersections and repair: --max-growth and --max-panel-ratio", "[size-bounds][cli]") {

@@ -32,22 +32,53 @@ std::string escape(const std::string& text) {
 /// A plotted value, or none when it is not a number (a ratio to a zero).
 std::optional<double> finite_or_none(double v) { return std::isfinite(v) ? std::optional<double>(v) : std::nullopt; }
 
+/// The symmetric log scale of the Poisson plot: linear within +-1, a decade a
+/// unit beyond (+-10 at +-2, +-100 at +-3), so that a ratio near a pole and one
+/// near 0 are both on the scale.
+double symlog(double v) { return std::abs(v) <= 1.0 ? v : std::copysign(1.0 + std::log10(std::abs(v)), v); }
+
+/// The value at a symlog position (for tick labels).
+double symlog_inverse(double f) { return std::abs(f) <= 1.0 ? f : std::copysign(std::pow(10.0, std::abs(f) - 1.0), f); }
+
+/// Where L_j is stationary (d ln L_j / dt changes sign between two samples): the
+/// poles of nu_jk, by linear interpolation of the rate.
+std::vector<std::pair<int, double>> stationary_lengths(const MetricsReport& r) {
+  std::vector<std::pair<int, double>> out;
+  for (int j = 0; j < 2; ++j) {  // L1 (nu_12, nu_13) and L2 (nu_23)
+    for (std::size_t k = 0; k + 1 < r.samples.size(); ++k) {
+      const auto& a = r.samples[k].strain_rate[j];
+      const auto& b = r.samples[k + 1].strain_rate[j];
+      if (!a || !b || !std::isfinite(*a) || !std::isfinite(*b) || !(*a * *b < 0.0)) continue;
+      const double ta = r.samples[k].t, tb = r.samples[k + 1].t;
+      out.push_back({j, ta + (tb - ta) * *a / (*a - *b)});
+    }
+  }
+  return out;
+}
+
 void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, double w, double h,
-          const std::string& title, const std::string& y_label, const Series& series, std::optional<double> clip) {
+          const std::string& title, const std::string& y_label, const Series& series, std::optional<double> clip,
+          bool log_scale = false, const std::vector<int>& pole_of = {}) {
   static const char* colours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e"};
+  // The axis's coordinate of a value (the symmetric log with log_scale).
+  auto scale = [&](double v) { return log_scale ? symlog(v) : v; };
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   bool clipped = false;
   for (const auto& [name, values] : series) {
     for (const auto& v : values) {
       if (!v) continue;
       clipped = clipped || (clip && std::abs(*v) > *clip);
-      const double c = clip ? std::clamp(*v, -*clip, *clip) : *v;
+      const double c = scale(clip ? std::clamp(*v, -*clip, *clip) : *v);
       lo = std::min(lo, c), hi = std::max(hi, c);
     }
   }
   if (!(hi >= lo)) lo = 0.0, hi = 1.0;
-  std::tie(lo, hi) = round_range(lo, hi);
-  if (clip) lo = std::max(lo, -*clip), hi = std::min(hi, *clip);
+  if (log_scale) {
+    lo = std::min(std::floor(lo), -1.0), hi = std::max(std::ceil(hi), 1.0);  // whole decades, +-1 at least
+  } else {
+    std::tie(lo, hi) = round_range(lo, hi);
+    if (clip) lo = std::max(lo, -*clip), hi = std::min(hi, *clip);
+  }
   auto sx = [&](double t) { return x + (t - r.t_lambda) / (r.t_mu - r.t_lambda) * w; };
   auto sy = [&](double v) { return y + h - (v - lo) / (hi - lo) * h; };
   svg << "<g font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" font-size=\"11\">\n";
@@ -68,7 +99,22 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
     }
   }
   // y: gridlines at round values, labelled on the left; the quantity rotated beside them.
-  const Ticks yt = round_ticks(lo, hi);
+  Ticks yt;
+  if (log_scale) {
+    // A tick a decade (+-1, +-10, +-100, ...) and at 0 and +-0.5 in the linear part.
+    // +-0.5 only while the axis has room (a few decades).
+    for (double f = lo; f <= hi + 1e-9; f += 0.5) {
+      if (f != std::round(f) && (std::abs(f) > 1.0 || hi - lo > 6.0)) continue;
+      const double v = symlog_inverse(f);
+      const int decade = static_cast<int>(std::lround(std::abs(f))) - 1;
+      yt.values.push_back(f);
+      yt.labels.push_back(std::abs(f) < 1e-9 ? "0"
+                          : std::abs(v) >= 1e3 ? std::string(v < 0 ? "-" : "") + "1e" + std::to_string(decade)
+                                               : format_significant(v, 3));
+    }
+  } else {
+    yt = round_ticks(lo, hi);
+  }
   std::size_t widest = 0;
   for (const std::string& label : yt.labels) widest = std::max(widest, label.size());
   for (std::size_t k = 0; k < yt.values.size(); ++k) {
@@ -102,11 +148,28 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
   svg << "<line x1=\"" << px(sx(r.t_star)) << "\" y1=\"" << px(y) << "\" x2=\"" << px(sx(r.t_star)) << "\" y2=\""
       << px(y + h) << "\" stroke=\"#999\" stroke-dasharray=\"4 3\"/><text x=\"" << px(sx(r.t_star) + 3) << "\" y=\""
       << px(y + 12) << "\" fill=\"#777\">t*</text>\n";
+  // Poles: where a length is stationary its Poisson's ratios pass through infinity.
+  const std::vector<std::pair<int, double>> poles = pole_of.empty() ? std::vector<std::pair<int, double>>{}
+                                                                    : stationary_lengths(r);
+  for (const auto& [j, t] : poles) {
+    svg << "<line class=\"pole\" x1=\"" << px(sx(t)) << "\" y1=\"" << px(y) << "\" x2=\"" << px(sx(t)) << "\" y2=\""
+        << px(y + h) << "\" stroke=\"#555\" stroke-dasharray=\"2 3\"/><text x=\"" << px(sx(t) + 3) << "\" y=\""
+        << px(y + h - 4 - 12 * j) << "\" fill=\"#555\" font-size=\"10\">L" << j + 1 << " stationary</text>\n";
+  }
+  auto crosses_pole = [&](std::size_t s, double ta, double tb) {
+    if (s >= pole_of.size()) return false;
+    for (const auto& [j, t] : poles) {
+      if (j == pole_of[s] && t > ta && t < tb) return true;
+    }
+    return false;
+  };
   double legend_y = y + 14;
+  bool limit_values = false;
   for (std::size_t s = 0; s < series.size(); ++s) {
     const auto& [name, values] = series[s];
     std::string points, markers;
     std::optional<double> last;
+    std::optional<double> last_t;
     auto flush = [&] {
       if (!points.empty()) {
         svg << "<polyline fill=\"none\" stroke-width=\"1.5\" stroke=\"" << colours[s % 5] << "\" points=\"" << points
@@ -120,10 +183,20 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
         last.reset();
         continue;
       }
-      const double v = clip ? std::clamp(*values[k], -*clip, *clip) : *values[k];
-      // A jump across most of the axis (a ratio through infinity) is not joined by a line.
-      if (last && std::abs(v - *last) > 0.6 * (hi - lo)) flush();
+      const double v = scale(clip ? std::clamp(*values[k], -*clip, *clip) : *values[k]);
+      if (log_scale && (k == 0 || k + 1 == values.size())) {
+        // The value at a flexion limit: a limit (the motion is singular there), not joined to its neighbour.
+        markers += "<circle class=\"limit-value\" cx=\"" + px(sx(r.samples[k].t)) + "\" cy=\"" + px(sy(v)) +
+                   "\" r=\"3\" fill=\"white\" stroke=\"" + std::string(colours[s % 5]) + "\" stroke-width=\"1.5\"/>";
+        limit_values = true;
+        flush();
+        last.reset();
+        continue;
+      }
+      // A jump across most of the axis (a ratio through infinity) is not joined by a line, nor is a pole crossed.
+      if (last && (std::abs(v - *last) > 0.6 * (hi - lo) || (last_t && crosses_pole(s, *last_t, r.samples[k].t)))) flush();
       last = v;
+      last_t = r.samples[k].t;
       points += px(sx(r.samples[k].t)) + "," + px(sy(v)) + " ";
       if (clip && std::abs(*values[k]) > *clip) {
         const double u = sx(r.samples[k].t), e = sy(v), d = *values[k] > 0 ? -5.0 : 5.0;
@@ -142,6 +215,18 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
     svg << "<rect x=\"" << px(x + w + 10) << "\" y=\"" << px(legend_y - 10) << "\" width=\"18\" height=\"10\" fill=\"#f6c9c9\"/>"
         << "<text x=\"" << px(x + w + 32) << "\" y=\"" << px(legend_y) << "\">not buildable</text>\n";
     legend_y += 16;
+  }
+  if (limit_values) {
+    svg << "<circle cx=\"" << px(x + w + 19) << "\" cy=\"" << px(legend_y - 4) << "\" r=\"3\" fill=\"white\" stroke=\"#444\" "
+           "stroke-width=\"1.5\"/><text class=\"limit-note\" x=\"" << px(x + w + 32) << "\" y=\"" << px(legend_y)
+        << "\">at a flexion limit</text>\n";
+    legend_y += 16;
+  }
+  if (log_scale) {
+    svg << "<text class=\"scale-note\" x=\"" << px(x + w + 10) << "\" y=\"" << px(legend_y + 4)
+        << "\" fill=\"#444\">linear within &#177;1,</text><text x=\"" << px(x + w + 10) << "\" y=\"" << px(legend_y + 18)
+        << "\" fill=\"#444\">a decade a step beyond</text>\n";
+    legend_y += 32;
   }
   if (clipped) {
     svg << "<text class=\"clip-note\" x=\"" << px(x + w + 10) << "\" y=\"" << px(legend_y + 4)
@@ -186,7 +271,7 @@ std::string MetricsReport::to_svg() const {
   plot(svg, *this, 90, 90, 560, 220, extents_title,
        "ratio to the value at t* (dimensionless)", ratios, std::nullopt);
   plot(svg, *this, 90, 440, 560, 220, "Effective Poisson's ratios nu_jk = -(d ln L_k) / (d ln L_j)",
-       "Poisson's ratio (dimensionless)", poisson, poisson_clip);
+       "Poisson's ratio (dimensionless, symmetric log)", poisson, poisson_clip, true, {0, 0, 1});
   svg << "</svg>\n";
   return svg.str();
 }

@@ -60,8 +60,9 @@ struct MetricsReport {
   /// none when nothing is buildable; known once the command has assessed it.
   bool buildability_known = false;
   std::optional<std::pair<double, double>> buildable;
-  /// The Poisson plot shows values within +-this (beyond: marked at the edge).
-  double poisson_clip = 10.0;
+  /// The Poisson plot (a symmetric log scale) shows values within +-this
+  /// (beyond: marked at the edge).
+  double poisson_clip = 1e6;
 
   nlohmann::json to_json() const;
   std::string to_csv() const;
