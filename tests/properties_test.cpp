@@ -132,7 +132,12 @@ TEST_CASE("random P-hedra: reproduced at t*, planar and isometric over the inter
           "[properties]") {
   std::mt19937_64 rng(20261122);
   int constructed = 0, redrawn = 0;
-  for (std::size_t k = 0; k < 240; ++k) {
+#ifdef PHEDRA_SANITIZE_BUILD
+  const std::size_t drawn = 96;  // every shape class still (k % 11, k % 24, k % 2); 240 took 29 s there
+#else
+  const std::size_t drawn = 240;
+#endif
+  for (std::size_t k = 0; k < drawn; ++k) {
     RandomInputShape shape;
     shape.profile_vertices = 2 + k % 11;               // n = 2..12
     shape.strips = 1 + (k * 7) % 50;                    // m = 1..50
@@ -144,7 +149,7 @@ TEST_CASE("random P-hedra: reproduced at t*, planar and isometric over the inter
     check_properties(*p);
     ++constructed;
   }
-  CHECK(constructed == 240);
+  CHECK(constructed == static_cast<int>(drawn));
   WARN("drawn again (rejected or t* near a limit): " << redrawn);
 }
 
