@@ -9,7 +9,7 @@ from .._core import Error, FileError, InputError
 
 
 def _sweep(argv):
-    from . import Interrupted, SweepFailed, sweep
+    from . import sweep
     p = argparse.ArgumentParser(prog="python3 -m phedra.atlas",
                                 description="Sweep a design space (SPACE.json) into a Zarr atlas on Dask; the same "
                                             "command continues an interrupted sweep. Also: `plot ATLAS X Y -o F.png`, "
@@ -32,14 +32,7 @@ def _sweep(argv):
         raise _field_error("--workers", f"must be a whole number, 0 or more (got {a.workers})")
     if a.chunk is not None and a.chunk <= 0:
         raise _field_error("--chunk", f"must be a positive whole number (got {a.chunk})")
-    try:
-        s = sweep(a.space, a.output, scheduler=a.scheduler, workers=a.workers, chunk=a.chunk, progress=not a.quiet)
-    except Interrupted as e:
-        print(f"phedra.atlas: {e}", file=sys.stderr)
-        return 130
-    except SweepFailed as e:
-        print(f"phedra.atlas: {e}", file=sys.stderr)
-        return 1
+    s = sweep(a.space, a.output, scheduler=a.scheduler, workers=a.workers, chunk=a.chunk, progress=not a.quiet)
     if a.json:
         print(json.dumps(s, indent=2))
     else:
@@ -108,19 +101,17 @@ def _field_error(field, message):
 
 
 def main(argv=None):
+    from . import Interrupted
     argv = sys.argv[1:] if argv is None else argv
     command = {"plot": _plot, "query": _query}.get(argv[0] if argv else "", None)
+    # Exit status by what went wrong: bad input 2, a file 3, interrupted 130, the rest
+    # (a task failed on the cluster) 1; the message on one line.
     try:
         return command(argv[1:]) if command else _sweep(argv)
-    except InputError as e:
+    except (Interrupted, Error) as e:
         print(f"phedra.atlas: {e}", file=sys.stderr)
-        return 2
-    except FileError as e:
-        print(f"phedra.atlas: {e}", file=sys.stderr)
-        return 3
-    except Error as e:
-        print(f"phedra.atlas: {e}", file=sys.stderr)
-        return 1
+        return next(code for kind, code in ((Interrupted, 130), (InputError, 2), (FileError, 3), (Error, 1))
+                    if isinstance(e, kind))
 
 
 if __name__ == "__main__":
