@@ -422,9 +422,9 @@ TEST_CASE("every numeric option of every command at 0, -1, nan, 1e-300 and 1e300
       if (command == "mechanics" && option == "--material") continue;  // E,NU: two numbers, its own test
       ++swept;
 #ifdef PHEDRA_SANITIZE_BUILD
-      // The extremes (what overflows or underflows: a cast of 3e299 to long was found here); the
+      // The largest (what overflows: a cast of 3e299 to long was found here); the
       // Release run gives every option all five.
-      const std::vector<std::string> values{"1e-300", "1e300"};
+      const std::vector<std::string> values{"1e300"};
 #else
       const std::vector<std::string> values{"0", "-1", "nan", "1e-300", "1e300"};
 #endif
