@@ -151,10 +151,31 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
   // Poles: where a length is stationary its Poisson's ratios pass through infinity.
   const std::vector<std::pair<int, double>> poles = pole_of.empty() ? std::vector<std::pair<int, double>>{}
                                                                     : stationary_lengths(r);
+  // Each line's label beside it, inside the plot (left of a line near the right edge), on the
+  // lowest row along the bottom where it overlaps no other label.
+  const double label_width = 72.0;  // "L1 stationary" at 10 px
+  std::vector<std::vector<std::pair<double, double>>> rows;  // labels' extents, by row
+  std::string pole_labels;
   for (const auto& [j, t] : poles) {
-    svg << "<line class=\"pole\" x1=\"" << px(sx(t)) << "\" y1=\"" << px(y) << "\" x2=\"" << px(sx(t)) << "\" y2=\""
-        << px(y + h) << "\" stroke=\"#555\" stroke-dasharray=\"2 3\"/><text x=\"" << px(sx(t) + 3) << "\" y=\""
-        << px(y + h - 4 - 12 * j) << "\" fill=\"#555\" font-size=\"10\">L" << j + 1 << " stationary</text>\n";
+    const double u = sx(t);
+    const bool left = u + 3 + label_width > x + w;
+    const double from = left ? u - 3 - label_width : u + 3, to = from + label_width;
+    std::size_t row = 0;
+    for (; row < rows.size(); ++row) {
+      const bool free = std::none_of(rows[row].begin(), rows[row].end(), [&](const auto& e) {
+        return from < e.second + 4 && to > e.first - 4;
+      });
+      if (free) break;
+    }
+    if (row == rows.size()) rows.emplace_back();
+    rows[row].push_back({from, to});
+    svg << "<line class=\"pole\" x1=\"" << px(u) << "\" y1=\"" << px(y) << "\" x2=\"" << px(u) << "\" y2=\""
+        << px(y + h) << "\" stroke=\"#555\" stroke-dasharray=\"2 3\"/>\n";
+    // Drawn after the curves, on a white halo, so that no curve hides a letter.
+    pole_labels += "<text class=\"pole-label\" x=\"" + px(left ? u - 3 : u + 3) + "\" y=\"" +
+                   px(y + h - 4 - 12.0 * static_cast<double>(row)) + "\" text-anchor=\"" + (left ? "end" : "start") +
+                   "\" fill=\"#555\" font-size=\"10\" stroke=\"white\" stroke-width=\"3\" paint-order=\"stroke\">L" +
+                   std::to_string(j + 1) + " stationary</text>\n";
   }
   auto crosses_pole = [&](std::size_t s, double ta, double tb) {
     if (s >= pole_of.size()) return false;
@@ -216,6 +237,7 @@ void plot(std::ostringstream& svg, const MetricsReport& r, double x, double y, d
         << "<text x=\"" << px(x + w + 32) << "\" y=\"" << px(legend_y) << "\">not buildable</text>\n";
     legend_y += 16;
   }
+  svg << pole_labels;
   if (limit_values) {
     svg << "<circle cx=\"" << px(x + w + 19) << "\" cy=\"" << px(legend_y - 4) << "\" r=\"3\" fill=\"white\" stroke=\"#444\" "
            "stroke-width=\"1.5\"/><text class=\"limit-note\" x=\"" << px(x + w + 32) << "\" y=\"" << px(legend_y)

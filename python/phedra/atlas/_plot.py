@@ -54,7 +54,8 @@ def plot(atlas, x, y, output):
     ax.set_xlabel(x)
     ax.set_ylabel(y)
     name = space["base"].get("name", "base")
-    ax.set_title(f"{name}: {int(ds['done'].values.sum())} designs ({space['sampling']}), {invalid} invalid not shown")
+    hidden = f", {invalid} invalid (not shown)" if invalid else ""
+    ax.set_title(f"{name}: {int(ds['done'].values.sum())} designs ({space['sampling']}){hidden}")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=9)
     fig.tight_layout()
