@@ -1,4 +1,4 @@
-// phedra repair PRESET -o OUT.json [--vary GROUPS] [--require F] [--no-fallback] [--restarts N] [--max-seconds S] [--json]
+// phedra repair PRESET -o OUT.json [--vary GROUPS] [--require F] [--no-fallback] [--restarts N] [--max-seconds S] [--closest FILE] [--json]
 
 #include "commands.h"
 #include "number_checks.h"
@@ -56,7 +56,8 @@ nlohmann::json result_json(const RepairResult& r) {
           {"varied", group_list(r.varied)},
           {"escalated", r.escalated},
           {"nearest_changes", r.nearest_changes},
-          {"closest", r.closest.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.closest)}};
+          {"closest", r.closest.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.closest)},
+          {"closest_fraction", r.found || r.already_buildable ? nlohmann::json(nullptr) : nlohmann::json(r.closest_fraction)}};
 }
 
 }  // namespace
@@ -67,8 +68,9 @@ void add_repair_command(CLI::App& app, Context& context) {
       "repair", "The nearest buildable design: change the preset's apex heights and directions (by default; the "
                 "trajectory too when they cannot do it) as little as possible, relative to the model size, until "
                 "every panel is simple and the motion is free of collisions over the whole flexion interval (or the "
-                "widest part around t* that can be reached); writes the repaired preset and prints what changed; "
-                "exit 1 when nothing buildable was found");
+                "part --require asks); writes the repaired preset and prints what changed; exit 1 when no design "
+                "buildable over that part was found (nothing written; --closest writes the closest, e.g. the widest "
+                "part reached)");
   add_preset_argument(sub, o->preset);
   sub->add_option("-o,--output", o->output, "The repaired preset (.json); not written when nothing was found")->required();
   sub->add_option("--vary", o->vary, "What may change: a comma-separated list of apex_heights, directions, trajectory")
@@ -82,7 +84,8 @@ void add_repair_command(CLI::App& app, Context& context) {
                 "With the default --vary: do not try the trajectory too when the heights and directions cannot do it "
                 "(by default it is tried next, and the result says so)");
   sub->add_flag("--no-fallback", o->no_fallback,
-                "Fail (exit 1) rather than settle for a smaller buildable part than --require asks");
+                "When the required part cannot be reached, do not search the widest part that can (a faster exit "
+                "1; the closest design is then the least bad one found)");
   sub->add_option("--objective", o->objective,
                   "What nearest means: distance (the smallest change, relative to the model size; it may spread "
                   "over many fields) or fields (the fewest fields changed: after the nearest design, searches "
@@ -109,7 +112,7 @@ void add_repair_command(CLI::App& app, Context& context) {
     o->repair.vary = parse_variable_groups(o->vary);
     // An explicit --vary is what the user allows; the default may grow to the trajectory.
     o->repair.escalate = !o->no_escalate && sub->count("--vary") == 0;
-    o->repair.widest_fallback = !o->no_fallback;
+    o->repair.search_widest = !o->no_fallback;
     o->repair.objective = o->objective == "fields" ? RepairObjective::fields : RepairObjective::distance;
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     const RepairResult r = repair(loaded.preset, o->repair);
@@ -129,10 +132,6 @@ void add_repair_command(CLI::App& app, Context& context) {
         out << "already buildable as required: nothing to repair, nothing written\n";
       } else if (r.found) {
         out << "after:  " << r.after.summary() << '\n';
-        if (r.fraction < o->repair.required_fraction) {
-          out << "        the required part (" << percent(o->repair.required_fraction)
-              << " of the way from t* to each limit) could not be reached; this is the widest found\n";
-        }
         out << "changed " << r.changes.size() << " field" << (r.changes.size() == 1 ? "" : "s");
         if (o->repair.objective == RepairObjective::fields) out << " (the nearest design changes " << r.nearest_changes << ")";
         out << ", distance "
@@ -148,8 +147,17 @@ void add_repair_command(CLI::App& app, Context& context) {
         }
         out << "wrote " << o->output << '\n';
       } else {
-        out << "no buildable design found: " << r.closest << "; nothing written";
-        if (!o->closest.empty() && r.closest_preset.is_object()) out << " (the closest design: " << o->closest << ")";
+        if (r.closest_fraction > 0.0) {  // a narrower part was reached: not a result
+          out << "no design buildable over the required part (" << percent(o->repair.required_fraction)
+              << " of the way from t* to each limit) found: " << r.closest << "; nothing written";
+        } else {
+          out << "no buildable design found: " << r.closest << "; nothing written";
+        }
+        if (!o->closest.empty() && r.closest_preset.is_object()) {
+          out << " (the closest design: " << o->closest << ")";
+        } else if (r.closest_preset.is_object()) {
+          out << " (--closest FILE writes the closest design)";
+        }
         out << '\n';
       }
       for (const std::string& note : r.notes) out << "note: " << note << '\n';

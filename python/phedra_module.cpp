@@ -508,6 +508,11 @@ class PyDesign {
     result["after"] = to_python(r.after.file_json());
     result["notes"] = r.notes;
     result["closest"] = r.closest;
+    // Not found: the closest design (the widest part reached, or the fewest panels not simple) to inspect.
+    result["closest_fraction"] = r.found || r.already_buildable ? py::object(py::none()) : py::object(py::float_(r.closest_fraction));
+    result["closest_design"] = r.found || r.already_buildable || !r.closest_preset.is_object()
+                                   ? py::object(py::none())
+                                   : py::cast(PyDesign(named_result(r.closest_preset, name(), vary, r), source_ + " (closest)"));
     result["seconds"] = r.seconds;
     py::object repaired = py::none();
     if (r.found && !r.already_buildable) {
@@ -786,7 +791,9 @@ PYBIND11_MODULE(_core, m) {
            "bistable, barrier")
       .def("repair", &PyDesign::repair, py::arg("vary") = "apex_heights,directions", py::arg("require") = 1.0,
            py::arg("objective") = "distance", py::arg("max_seconds") = 60.0,
-           "The nearest buildable design: (Design or None, result dict) as phedra repair")
+           "The nearest design buildable over the required part (`require`, as --require): (Design or None, result dict) "
+           "as phedra repair --json; when none is found, None and the result's closest_design (the widest part reached, or "
+           "the fewest panels not simple) and closest_fraction")
       .def("optimize", &PyDesign::optimize, py::arg("targets") = py::none(), py::arg("fit") = py::none(),
            py::arg("fit_tol") = py::none(), py::arg("vary") = "apex_heights,directions", py::arg("keep_buildable") = true,
            py::arg("tol") = 0.02, py::arg("axes") = "structural", py::arg("max_seconds") = 60.0, py::arg("seed") = 1u,

@@ -570,8 +570,10 @@ class Designer {
   /// JSON {vary: "apex_heights,directions", require: 1, max_seconds: 10, fixed:
   /// ["/trajectory/3"] (fields that stay)}, each optional. Returns {ok: true, found, already_buildable, fraction, distance,
   /// before, after (summaries), changes: [{field, before, after, change,
-  /// relative}], preset (its text, named "NAME-repaired", when found), closest
-  /// (how close it came, when not), evaluations, starts, seconds}, or {ok:
+  /// relative}], preset (its text, named "NAME-repaired", when found: buildable
+  /// over the required part), closest (how close it came, when not),
+  /// closest_fraction and closest_preset (when not found but a narrower part
+  /// was reached: that design, "NAME-closest"), evaluations, starts, seconds}, or {ok:
   /// false, field, message}. The shown design does not change (the page loads
   /// the result, keeping the previous one for its undo).
   val repair(const std::string& options_text) const {
@@ -598,6 +600,11 @@ class Designer {
         v.set("preset", named_result(r.preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
       }
       v.set("closest", r.closest);
+      if (!r.found && !r.already_buildable && r.closest_fraction > 0.0 && r.closest_preset.is_object()) {
+        // The widest part reached: not a repair, offered to load (the page says so).
+        v.set("closest_fraction", r.closest_fraction);
+        v.set("closest_preset", named_result(r.closest_preset, document_.value("name", std::string("unnamed")), vary, r).dump(2));
+      }
       v.set("evaluations", static_cast<double>(r.evaluations));
       v.set("starts", static_cast<double>(r.starts));
       v.set("seconds", r.seconds);

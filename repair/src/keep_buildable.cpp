@@ -217,7 +217,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
     out.window = line.window;
     return out;
   }
-  Problem problem(*variables, search, panels, input.assembly.model_size());
+  Problem problem(*variables, search, panels, input.assembly.model_size(), t_star_margin(input.assembly));
   problem.set_mode(ShapeMode::positive_net, MotionMode::none, 1.0);
   std::vector<double> x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
   problem.set_mode(ShapeMode::exact, MotionMode::none, 1.0);

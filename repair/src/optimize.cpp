@@ -243,9 +243,8 @@ class TargetRun {
       : options_(options),
         variables_(variables),
         repair_options_(repair_options),
-        problem_(variables, repair_options, panels, size),
+        problem_(variables, repair_options, panels, size, t_star_margin(design_from_json(preset).assembly)),
         search_(variables, options, problem_) {
-    (void)preset;
     problem_.set_mode(ShapeMode::exact, MotionMode::t_star, 1.0);
     search_.constrained = options.keep_buildable;
   }

@@ -2,6 +2,7 @@
 
 #include "repair_search.h"
 
+#include "phedra/assembly_check.h"
 #include "phedra/design_preset.h"
 #include "phedra/errors.h"
 #include "phedra/self_intersection.h"
@@ -26,6 +27,17 @@ BuildabilityReport verify(const json& preset, const SizeBounds& bounds, bool swe
   options.diagnosis.hints = false;
   options.sweep.samples_per_side = 200;
   return assess_buildability(design_from_json(preset), nullptr, options);
+}
+
+/// What `phedra check` says of the geometry (planarity, isometry, closure and
+/// the reproduction at t*, its default samples): a result is written only when
+/// the file will pass it too.
+bool geometry_passes(const json& preset) {
+  try {
+    return check_assembly(design_from_json(preset).assembly).passed();
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 }  // namespace
@@ -90,6 +102,18 @@ double buildable_fraction(const BuildabilityReport& r) {
 
 namespace {
 
+/// Two failed searches: `into` takes `other`'s closest design when it is closer
+/// (fewer panels not simple, then a wider buildable part).
+void take_closest_if_closer(RepairResult& into, const RepairResult& other) {
+  const std::size_t a = into.after.invalid.size(), b = other.after.invalid.size();
+  if (b < a || (b == a && other.closest_fraction > into.closest_fraction)) {
+    into.after = other.after;
+    into.closest = other.closest;
+    into.closest_preset = other.closest_preset;
+    into.closest_fraction = other.closest_fraction;
+  }
+}
+
 /// One search varying options.vary (repair() escalates).
 RepairResult repair_varying(const json& preset, const RepairOptions& options) {
   const Clock::time_point start = Clock::now();
@@ -123,7 +147,7 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
   }
   std::size_t panels = 0;
   for (std::size_t m = 0; m < input.assembly.member_count(); ++m) panels += input.assembly.topology(m).face_count();
-  Problem problem(variables, options, panels, size);
+  Problem problem(variables, options, panels, size, t_star_margin(input.assembly));
   std::mt19937_64 rng(options.seed);
   std::normal_distribution<double> normal;
 
@@ -141,8 +165,10 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
     Candidate c;
     c.x = x;
     c.distance = variables.distance(x);
+    json at;
     try {
-      c.report = verify(variables.preset_at(x), options.bounds);
+      at = variables.preset_at(x);
+      c.report = verify(at, options.bounds);
     } catch (const Error&) {
       return false;
     }
@@ -151,7 +177,8 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
         (c.report.invalid.size() == closest->report.invalid.size() && c.fraction > closest->fraction)) {
       closest = c;
     }
-    if (meets(c.report, fraction_wanted)) {
+    if (meets(c.report, required)) {  // only the required part makes a result
+      if (!geometry_passes(at)) return false;  // one phedra check would refuse (t* at a limit: ill-conditioned)
       if (!best || c.distance < best->distance) best = c;
       return true;
     }
@@ -159,7 +186,7 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
                               (c.fraction == best_partial->fraction && c.distance < best_partial->distance))) {
       best_partial = c;
     }
-    return false;
+    return meets(c.report, fraction_wanted);  // a narrower part searched for the closest design
   };
   auto time_left = [&] { return options.max_seconds - seconds_since(start); };
   const std::vector<double> x0 = variables.start();
@@ -244,13 +271,14 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
       motion_from(x, required);
     }
   }
-  if (!best && options.widest_fallback && !simple.empty()) {
+  if (!best && options.search_widest && !simple.empty()) {
     for (const double fraction : {0.75, 0.5, 0.25, 0.0}) {
       if (fraction >= required || time_left() <= 0.0) continue;
       if (motion_from(best_partial ? best_partial->x : simple.front(), fraction)) break;
     }
   }
-  if (!best && options.widest_fallback && best_partial && best_partial->fraction > 0.0) best = best_partial;
+  // The widest part found is the closest design, not a result (the required part was not reached).
+  if (!best && best_partial && best_partial->fraction > 0.0) closest = best_partial;
   if (best) {
     // Changes below 0.1 % of the model size (or 0.06 degrees) are mostly the
     // search's noise: put them back while the design stays as buildable without
@@ -269,8 +297,9 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
         }
         if (!any) continue;
         try {
-          const BuildabilityReport report = verify(variables.preset_at(tidy), options.bounds);
-          if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12) {
+          const json tidied = variables.preset_at(tidy);
+          const BuildabilityReport report = verify(tidied, options.bounds);
+          if (report.panels_simple() && buildable_fraction(report) >= best->fraction - 1e-12 && geometry_passes(tidied)) {
             best->x = tidy;
             best->distance = variables.distance(tidy);
             best->report = report;
@@ -297,6 +326,7 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
   } else {
     r.after = closest ? closest->report : r.before;
     r.closest_preset = variables.preset_at(closest ? closest->x : x0);
+    r.closest_fraction = closest && closest->fraction > 0.0 ? closest->fraction : 0.0;
     const BuildabilityReport& c = r.after;
     if (!c.panels_simple()) {
       r.closest = "no design near the input has every panel simple: at best " + std::to_string(c.invalid.size()) +
@@ -305,8 +335,10 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
       r.closest = "every panel can be made simple, but the configuration at t* then collides: " +
                   describe(*c.motion.at_t_star, c.members > 1);
     } else {
-      r.closest = "the best design found is buildable over " + std::to_string(static_cast<int>(100.0 * buildable_fraction(c))) +
-                  " % of the way from t* to the limits only";
+      const double percent = 100.0 * buildable_fraction(c);
+      r.closest = "the best design found is buildable over " +
+                  (percent >= 1.0 ? std::to_string(static_cast<int>(percent)) + " %" : std::string("less than 1 %")) +
+                  " of the way from t* to the limits only";
     }
   }
   r.seconds = seconds_since(start);
@@ -343,7 +375,7 @@ RepairResult fewest_fields(const json& preset, const RepairOptions& options, Rep
     subset.escalate = false;
     subset.objective = RepairObjective::distance;
     subset.required_fraction = nearest.fraction;
-    subset.widest_fallback = false;
+    subset.search_widest = false;
     subset.max_seconds = left;
     for (const DesignVariable& v : variables.variables()) {
       if (std::find(varied.begin(), varied.end(), v.field) == varied.end()) subset.fixed.push_back(v.pointer);
@@ -393,6 +425,7 @@ RepairResult repair(const json& preset, const RepairOptions& options) {
       nearest.seconds = r.seconds;
       nearest.evaluations = r.evaluations;
       nearest.starts = r.starts;
+      take_closest_if_closer(nearest, r);
     }
   }
   if (options.objective == RepairObjective::fields) return fewest_fields(preset, options, nearest);
@@ -430,14 +463,7 @@ RepairResult nearest_design(const json& preset, const RepairOptions& options) {
   for (VariableGroup g : options.vary) names += (names.empty() ? "" : ", ") + to_string(g);
   e.notes.push_back(e.found ? names + " alone could not make it buildable: the trajectory was varied too"
                             : "neither " + names + " nor the trajectory as well could make it buildable");
-  if (!e.found) {
-    // The closer of the two failures, said so.
-    if (r.after.invalid.size() < e.after.invalid.size()) {
-      e.after = r.after;
-      e.closest = r.closest;
-      e.closest_preset = r.closest_preset;
-    }
-  }
+  if (!e.found) take_closest_if_closer(e, r);  // the closer of the two failures
   return e;
 }
 

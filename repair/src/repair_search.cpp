@@ -20,6 +20,13 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+double t_star_margin(const Assembly& a) {
+  const double t = a.t_star();
+  const FlexionInterval& f = a.flexion_interval();
+  const double length = f.upper.t - f.lower.t;
+  return length > 0.0 ? std::min(t - f.lower.t, f.upper.t - t) / length : 0.0;
+}
+
 std::pair<double, double> required_range(const Assembly& a, double fraction) {
   const double t = a.t_star();
   const FlexionInterval& f = a.flexion_interval();
@@ -95,7 +102,14 @@ const std::vector<double>& Problem::at(const double* x) {
       return cached_;
     }
     const std::size_t motion = slots_per_face * panels_;
-    cached_[motion] = cached_[motion + 1] = cached_[motion + 2] = 0.0;
+    cached_[motion] = cached_[motion + 1] = cached_[motion + 2] = cached_[motion + 3] = 0.0;
+    // t* at a flexion limit is a design with two coinciding profile planes: its
+    // positions are ill-conditioned there (phedra check's reproduction fails)
+    // and the near side of the interval is empty, so "buildable over all of it"
+    // would be vacuous. Kept away from the limits in the motion modes.
+    if (motion_ != MotionMode::none && margin_target_ > 0.0) {
+      cached_[motion + 3] = std::clamp((margin_target_ - t_star_margin(a)) / margin_target_, -1.0, 1.0);
+    }
     if (motion_ == MotionMode::t_star) {
       const MotionMargins m = motion_margins(d, a.t_star(), a.t_star(), 0);
       cached_[motion] = 10.0 * m.depth_sum / size_;

@@ -50,8 +50,12 @@ enum class MotionMode {
 /// The optimizer's view of a design: its constraint values (<= 0 satisfied).
 class Problem {
  public:
-  Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size)
-      : variables_(variables), options_(options), panels_(panels), size_(size) {}
+  /// `input_margin`: the input's t* margin (t_star_margin()); the motion modes
+  /// keep t* at least RepairOptions::t_star_margin, or half the input's when smaller.
+  Problem(const DesignVariables& variables, const RepairOptions& options, std::size_t panels, double size,
+          double input_margin = 1.0)
+      : variables_(variables), options_(options), panels_(panels), size_(size),
+        margin_target_(std::min(options.t_star_margin, 0.5 * input_margin)) {}
 
   void set_mode(ShapeMode shapes, MotionMode motion, double fraction) {
     shapes_ = shapes;
@@ -59,13 +63,14 @@ class Problem {
     fraction_ = fraction;
     cached_.clear();
   }
-  std::size_t constraints() const { return slots_per_face * panels_ + 3; }
+  std::size_t constraints() const { return slots_per_face * panels_ + 4; }
   std::size_t evaluations() const { return evaluations_; }
 
   /// Constraint values at x: per member face its shape values (ShapeMode; exact
   /// also its size bounds), then the deepest penetration (x 10 over the model
   /// size), the furthest hinge past shut (radians) and the growth's log over its
-  /// bound over the part of the motion the mode sees (0 for none).
+  /// bound over the part of the motion the mode sees (0 for none), and t*'s
+  /// margin from the flexion limits short of its target (the motion modes).
   const std::vector<double>& at(const double* x);
 
  private:
@@ -76,6 +81,7 @@ class Problem {
   ShapeMode shapes_ = ShapeMode::exact;
   MotionMode motion_ = MotionMode::none;
   double fraction_ = 1.0;
+  double margin_target_ = 0.0;
   std::size_t evaluations_ = 0;
   std::vector<double> cached_x_, cached_;
 };
@@ -118,6 +124,10 @@ std::optional<std::vector<double>> scatter_search(const DesignVariables& variabl
 
 /// A JSON pointer as the field users read: "/tube/apex_heights/3" -> "tube.apex_heights[3]".
 std::string pointer_field(const nlohmann::json::json_pointer& pointer);
+
+/// How far t* lies from the nearer flexion limit, over the interval's length
+/// (0: t* is a limit, two profile planes coincide in the input; 0.5: the middle).
+double t_star_margin(const Assembly& assembly);
 
 /// Every panel a simple quad (MATH.md section 9) within the size bounds (not
 /// oversized, not a sliver: panel_size.h); cheap, no collision test.

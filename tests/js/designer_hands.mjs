@@ -99,7 +99,7 @@ export async function checkUnderHands({ page, preset, check, settled, screenshot
       watch.observe(document.getElementById('repair-result'), { childList: true, characterData: true, subtree: true });
     });
     await page.click('#repair');
-    await page.waitForFunction(() => /^(repaired|no buildable|repair refused)/.test(document.getElementById('repair-result').textContent),
+    await page.waitForFunction(() => /^(repaired|not repaired|repair refused)/.test(document.getElementById('repair-result').textContent),
       null, { timeout: 60000 });
     const result = await page.$eval('#repair-result', (e) => e.textContent);
     check(result.startsWith('repaired: '), `repair result: "${result}"`);

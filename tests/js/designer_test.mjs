@@ -208,7 +208,7 @@ try {
     const before = await loadFile(file);
     check(!before.buildable && (await api(() => window.phedraDesigner.invalidPanels())).length === 4, 'the repairable tube has 4 bow-ties');
     await page.click('#repair');
-    await page.waitForFunction(() => /^(repaired|no buildable|repair refused)/.test(document.getElementById('repair-result').textContent),
+    await page.waitForFunction(() => /^(repaired|not repaired|repair refused)/.test(document.getElementById('repair-result').textContent),
       null, { timeout: 60000 });
     const result = await page.$eval('#repair-result', (e) => e.textContent);
     check(result.startsWith('repaired: '), `repair result: "${result}"`);

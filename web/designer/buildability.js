@@ -72,15 +72,15 @@ export function createBuildability({ state, designer, panel, surface, apply, onF
     panel.showRepair(`repairing: searching the nearest buildable design that keeps t* = ${tStar} (up to ${repairSeconds} s)…`);
     afterPaint(() => {
       const kept = designer.repair(JSON.stringify({ max_seconds: repairSeconds, fixed: holding }));
-      const whole = kept.ok && (kept.already_buildable || (kept.found && kept.fraction >= 1));
-      if (whole || !kept.ok || holding === fixed) {
+      if (!kept.ok || kept.already_buildable || kept.found || holding === fixed) {
         finish(kept, false);
         return;
       }
       panel.showRepair(`no design keeping t* = ${tStar} is buildable over the whole interval: searching with t* free (up to ${repairSeconds} s)…`);
       afterPaint(() => {
         const free = designer.repair(JSON.stringify({ max_seconds: repairSeconds, fixed }));
-        const better = free.ok && free.found && (!kept.found || free.fraction > kept.fraction);
+        // A repair (buildable over the whole interval) with t* free, else the failure that came closer.
+        const better = free.ok && (free.found || (free.closest_fraction ?? 0) > (kept.closest_fraction ?? 0));
         finish(better ? free : kept, better);
       });
     });
@@ -94,17 +94,27 @@ export function createBuildability({ state, designer, panel, surface, apply, onF
     } else if (r.already_buildable) {
       panel.showRepair('already buildable over the whole flexion interval: nothing to repair');
     } else if (!r.found) {
-      panel.showRepair(`no buildable design found in ${format(r.seconds)} s: ${withNumbers(r.closest, format)}`);
+      const text = `not repaired: no design buildable over the whole flexion interval found in ${format(r.seconds)} s: ${withNumbers(r.closest, format)}`;
+      const part = Math.round(100 * (r.closest_fraction ?? 0));
+      // The widest part reached is not a repair: offered, saying what it is.
+      const offer = r.closest_preset ? {
+        label: `Load the closest design (buildable over ${part} % of the way from t* to the limits)`,
+        load: () => {
+          if (apply(JSON.parse(r.closest_preset), { what: 'closest design', keepT: true })) {
+            panel.showRepair(`loaded the closest design: buildable over ${part} % of the way from t* to the limits only, not the whole interval. Undo brings the previous design back.`);
+          }
+        },
+      } : null;
+      panel.showRepair(text, [], offer);
     } else {
       const before = state.info.t_star, moving = state.info.moving_apex;
       const why = freed ? `no buildable design keeps it, so the repair moved the apex ${moving} that t measures`
         : 'the repair changed which apex t measures';
       if (apply(JSON.parse(r.preset), { what: 'repair', keepT: true, tStarWhy: why })) {
-        const part = r.fraction >= 1 ? '' : ` (over ${Math.round(100 * r.fraction)} % of the way from t* to the limits: the widest part found)`;
         const after = state.info.t_star;
         const moved = Math.abs(after - before) > 1e-12 * state.info.model_size;
         const star = moved ? `t* moved from ${format(before)} to ${format(after)} (${why})` : `t* kept at ${format(after)}`;
-        panel.showRepair(`repaired${part}: ${r.changes.length} field${r.changes.length === 1 ? '' : 's'} changed, distance ` +
+        panel.showRepair(`repaired: ${r.changes.length} field${r.changes.length === 1 ? '' : 's'} changed, distance ` +
           `${format(r.distance)} of the model size, ${star}; ${r.evaluations} designs in ${format(r.seconds)} s. Undo brings the previous design back.`, r.changes);
         lastRepair = { tStarBefore: before, tStarAfter: after, moved, freed };
       }

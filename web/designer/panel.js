@@ -247,10 +247,15 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
   }
 
   /// What a repair (or keep buildable, undo, redo) did: `text`, and the fields it changed.
-  function showRepair(text, changes = []) {
-    const result = $('repair-result'), list = $('repair-list');
+  /// `offer`: {label, load} for a button under the message (the closest design
+  /// when nothing was repaired), or null.
+  function showRepair(text, changes = [], offer = null) {
+    const result = $('repair-result'), list = $('repair-list'), button = $('load-closest');
     result.hidden = !text;
     result.textContent = text;
+    button.hidden = !offer;
+    button.textContent = offer ? offer.label : '';
+    button.onclick = offer ? () => offer.load() : null;
     list.textContent = '';
     $('repair-changes').hidden = changes.length === 0;
     for (const c of changes) {

@@ -37,10 +37,15 @@ struct RepairOptions {
   /// The part of the flexion interval around t* that must be buildable: from
   /// t* towards each limit, this fraction of the way (1: all of it).
   double required_fraction = 1.0;
-  /// When the required part cannot be reached: the widest part found (tried at
-  /// 3/4, 1/2, 1/4 and t* alone), reported as such.
-  bool widest_fallback = true;
+  /// When the required part cannot be reached: search the widest part that can
+  /// (tried at 3/4, 1/2, 1/4 and t* alone) for the closest design. Never a
+  /// result: `found` means the required part is reached.
+  bool search_widest = true;
   double shape_target = 0.005;       ///< the shape margin every panel keeps (room to edit)
+  /// t* stays at least this part of the flexion interval away from each limit
+  /// (or half the input's own distance, when smaller): at a limit two profile
+  /// planes coincide, the positions are ill-conditioned and a side is empty.
+  double t_star_margin = 0.01;
   double edge_target = 0.005;        ///< while searching: the shortest panel edge, over the model size
   std::size_t motion_samples = 24;   ///< samples a side of the optimizer's motion margins
   std::size_t restarts = 40;         ///< perturbed starts after the input (for the panel shapes)
@@ -76,8 +81,8 @@ struct FieldChange {
 };
 
 struct RepairResult {
-  /// A design buildable over the required part (or, with the fallback, over a
-  /// smaller part around t*: `fraction` says how much) was found.
+  /// A design buildable over the required part was found (a smaller part is
+  /// never a result: it is the closest design, `closest_fraction` says how much).
   bool found = false;
   bool already_buildable = false;  ///< the input met the requirement: nothing changed
   double fraction = 0.0;           ///< the part of the interval the result is buildable over (as required_fraction)
@@ -99,6 +104,9 @@ struct RepairResult {
   /// When not found: the closest design (the fewest panels not simple, then the
   /// widest buildable part), for inspection.
   nlohmann::json closest_preset;
+  /// When not found: the part of the interval the closest design is buildable
+  /// over (as required_fraction; 0 when not even at t*).
+  double closest_fraction = 0.0;
 };
 
 /// Repairs `preset` (a preset object). InvalidInputError for a preset that does
