@@ -94,6 +94,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
     return out;
   }
   RepairOptions search;
+  search.t_star_margin = 0.0;  // a drag may take t* towards a limit (only repair keeps it away)
   search.vary = options.vary;
   search.fixed = options.fixed;
   search.max_seconds = options.max_seconds;
@@ -217,7 +218,7 @@ std::optional<Projection> project_buildable(const json& preset, const Projection
     out.window = line.window;
     return out;
   }
-  Problem problem(*variables, search, panels, input.assembly.model_size(), t_star_margin(input.assembly));
+  Problem problem(*variables, search, panels, input.assembly.model_size());
   problem.set_mode(ShapeMode::positive_net, MotionMode::none, 1.0);
   std::vector<double> x = feasible_search(*variables, problem, x0, search, left(), options.max_evaluations);
   problem.set_mode(ShapeMode::exact, MotionMode::none, 1.0);
