@@ -107,7 +107,7 @@ def tilt(rng, preset):
 def random_design(rng, k):
     """Design k: 60 % open, 15 % parallelogram tubes, 25 % arrays."""
     kind = rng.random()
-    smooth = rng.random() < 0.7
+    smooth = rng.random() < 0.5
     if kind < 0.6:
         strips, n = rng.randint(4, 8), rng.randint(4, 7)
         minus = rng.choice([0.0, 0.2, 0.4, 0.6])
