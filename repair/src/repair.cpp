@@ -5,6 +5,7 @@
 #include "phedra/assembly_check.h"
 #include "phedra/design_preset.h"
 #include "phedra/errors.h"
+#include "phedra/field_hints.h"
 #include "phedra/self_intersection.h"
 
 #include <algorithm>
@@ -27,6 +28,34 @@ BuildabilityReport verify(const json& preset, const SizeBounds& bounds, bool swe
   options.diagnosis.hints = false;
   options.sweep.samples_per_side = 200;
   return assess_buildability(design_from_json(preset), nullptr, options);
+}
+
+/// Starts from a collision at t*'s first-order hints (field_hints.h,
+/// collision_hints: the change of one field that opens the shut hinge or parts
+/// the panels): x with a hinted length variable moved 1.5 and 3 times its hint
+/// (past the first-order change, which only reaches the contact). Empty when x
+/// does not collide at t* or no hinted field varies.
+std::vector<std::vector<double>> collision_hint_starts(const DesignVariables& variables, const std::vector<double>& x) {
+  std::vector<std::vector<double>> out;
+  try {
+    const json preset = variables.preset_at(x);
+    const Design d = design_from_json(preset);
+    const std::optional<Collision> c = self_intersection_at_t_star(d);
+    if (!c) return out;
+    for (const FieldHint& h : collision_hints(preset, d, *c)) {
+      for (std::size_t k = 0; k < variables.size(); ++k) {
+        const DesignVariable& v = variables.variables()[k];
+        if (v.fixed || v.kind != DesignVariable::Kind::length || v.field != h.field) continue;
+        for (const double times : {1.5, 3.0}) {
+          std::vector<double> y = x;
+          y[k] += times * h.change;
+          out.push_back(std::move(y));
+        }
+      }
+    }
+  } catch (const Error&) {
+  }
+  return out;
 }
 
 /// What `phedra check` says of the geometry (planarity, isometry, closure and
@@ -223,6 +252,15 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
     problem.set_mode(ShapeMode::exact, MotionMode::t_star, required);
     if (total_violation(problem, x) > 0.0) {
       std::vector<double> free = feasible_search(variables, problem, x, options, time_left(), options.max_evaluations);
+      if (total_violation(problem, free) > 0.0) {
+        // Stalled (the summed depths have flat stretches): from where the
+        // collision's own hints point, the field that opens it moved past them.
+        for (const std::vector<double>& y : collision_hint_starts(variables, x)) {
+          if (time_left() <= 0.0) break;
+          free = feasible_search(variables, problem, y, options, time_left(), options.max_evaluations);
+          if (total_violation(problem, free) == 0.0) break;
+        }
+      }
       if (total_violation(problem, free) == 0.0) {
         free = towards(problem, free, x0);
         x = local_search(variables, problem, free, options, time_left(), options.max_evaluations);
