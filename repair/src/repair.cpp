@@ -255,10 +255,16 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
       if (total_violation(problem, free) > 0.0) {
         // Stalled (the summed depths have flat stretches): from where the
         // collision's own hints point, the field that opens it moved past them.
-        for (const std::vector<double>& y : collision_hint_starts(variables, x)) {
-          if (time_left() <= 0.0) break;
-          free = feasible_search(variables, problem, y, options, time_left(), options.max_evaluations);
+        // Two levels: a start that frees this collision may meet the next one,
+        // whose hints are followed in turn (at most 12 searches).
+        std::vector<std::vector<double>> starts = collision_hint_starts(variables, x);
+        std::size_t level_end = starts.size(), tried = 0;
+        for (std::size_t k = 0; k < starts.size() && tried < 12 && time_left() > 0.0; ++k, ++tried) {
+          free = feasible_search(variables, problem, starts[k], options, time_left(), options.max_evaluations);
           if (total_violation(problem, free) == 0.0) break;
+          if (k < level_end) {
+            for (std::vector<double>& y : collision_hint_starts(variables, free)) starts.push_back(std::move(y));
+          }
         }
       }
       if (total_violation(problem, free) == 0.0) {
