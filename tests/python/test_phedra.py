@@ -120,6 +120,13 @@ def test_repair_gives_a_buildable_design(tmp_path):
     out = tmp_path / "repaired.json"
     out.write_text(json.dumps(repaired.preset))
     assert cli("check", str(out)).returncode == 0
+    assert result["closest_design"] is None and result["closest_fraction"] is None
+    # Out of time: no result, but the closest design to inspect, said so.
+    none, failed = d.repair(max_seconds=1e-6)
+    assert none is None and not failed["found"]
+    assert "stay not simple" in failed["closest"]
+    assert isinstance(failed["closest_design"], phedra.Design) and failed["closest_fraction"] == 0.0
+    assert failed["closest_design"].preset["name"] == d.preset["name"] + "-closest"
 
 
 def test_optimize_reaches_a_target_that_the_command_confirms(tmp_path):
