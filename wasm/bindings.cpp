@@ -344,7 +344,8 @@ class Designer {
   /// {ok, buildable, summary, panels, bow_tie, degenerate, shape_margin,
   /// self_crossing, swept, interval: [a, b] or null, t_lambda, t_mu,
   /// invalid: [{panel, shape, cause, why, hints: [text]}],
-  /// ends: [{side: "below" | "above", t, text, panels: [a, b]}]}.
+  /// ends: [{side: "below" | "above", t, text, panels: [a, b]}],
+  /// at_t_star: {text, panels: [a, b], hints: [text]} when t* itself collides, else null}.
   val buildability(bool sweep, int samples, int hinted) {
     if (!design_) return failure("", "no design loaded");
     try {
@@ -408,6 +409,23 @@ class Designer {
         }
       }
       v.set("ends", ends);
+      // The configuration at t* itself collides: the panels, the command's words
+      // and the fields that free it (collision_hints; with hints asked for).
+      if (r.motion.at_t_star) {
+        const Collision& c = *r.motion.at_t_star;
+        val at = val::object();
+        at.set("text", describe(c, r.members > 1));
+        val panels = val::array();
+        panels.call<void>("push", static_cast<double>(c.a.face));
+        panels.call<void>("push", static_cast<double>(c.b.face));
+        at.set("panels", panels);
+        val hints = val::array();
+        for (const FieldHint& h : r.collision_hints) hints.call<void>("push", describe(h));
+        at.set("hints", hints);
+        v.set("at_t_star", at);
+      } else {
+        v.set("at_t_star", val::null());
+      }
       return v;
     } catch (const Error& e) {
       return failure("", e.what());
@@ -617,7 +635,9 @@ class Designer {
   /// samples (a side; 0: as the command)}. Keeps the plates for plateTriangles.
   /// {ok: true, thickness, side, plates, smallest_bevel_degrees, volume,
   /// panel_area, interval: [a, b] or null (they collide at t*), at_t_star: text or
-  /// null, ends: [{side, t, kind, text, panels: [a, b]}]} or {ok: false, field, message}.
+  /// null, ends: [{side, t, kind, text, panels: [a, b]}]} or {ok: false, field,
+  /// message} (plates too thick for a panel: field "thickness", and `thickest`,
+  /// the thickest plates that fit at t* on that side).
   val thick(const std::string& options_text) {
     if (!design_) return failure("", "no design loaded");
     return answer([&] {
@@ -629,7 +649,25 @@ class Designer {
       plates_.reset();
       BuildabilityOptions quick;
       quick.diagnosis.hints = false;
-      const ThickReport r = check_thickness(*design_, assess_buildability(*design_, nullptr, quick), options);
+      const BuildabilityReport buildability = assess_buildability(*design_, nullptr, quick);
+      ThickReport r;
+      try {
+        r = check_thickness(*design_, buildability, options);
+      } catch (const InvalidInputError& e) {
+        if (e.field() != "--thickness") throw;
+        // Too thick for a panel: the refusal and the thickest plates that fit at
+        // t* on that side (the page says both and highlights the panel).
+        val v = failure("thickness", e.reason());
+        ThickOptions probe = options;
+        probe.thickness = 1e-6 * design_->assembly.model_size();
+        probe.find_thickest = true;
+        try {
+          const ThickReport fits = check_thickness(*design_, buildability, probe);
+          if (fits.thickest) v.set("thickest", *fits.thickest);
+        } catch (const Error&) {
+        }
+        return v;
+      }
       plates_.emplace(thick_plates(*design_, r));
       val v = val::object();
       v.set("ok", true);

@@ -67,8 +67,12 @@ const dragging = createDragging({ ...stage, state, handles, loop, applyEdit, set
 const framing = createFraming({ ...stage, state, designer, handles, surface, isDragging: () => dragging.current !== null, requestRender });
 const checks = createBuildability({ state, designer, panel, surface, apply, onFigures: () => targets.refresh() });
 const targets = createTargets({ state, designer, apply });
-const thickness = createThickness({ scene: stage.scene, state, designer, surface, requestRender });
+const thickness = createThickness({ scene: stage.scene, state, designer, surface, requestRender,
+                                    onChange: () => { panel.showBuildability(); panel.showMessage(); } });
 const energy = createEnergy({ state, designer });
+// One section open at a time (Targets, Thick panels, Energy): the panel stays within a 768 px window.
+const sections = ['targets', 'thickness', 'energy'].map((id) => $(id));
+for (const d of sections) d.addEventListener('toggle', () => { if (d.open) for (const o of sections) if (o !== d) o.open = false; });
 
 /// The slider at t* (the input configuration: the surface passes through the
 /// handles); `before`: t* of the previous design, to say when an edit moved it

@@ -14,7 +14,7 @@ import {
 } from '../../web/designer/edits.js';
 import { presetInGlb } from '../../web/designer/files.js';
 import { energyPlot, foldAnglePlot, niceAxis } from '../../web/plot.js';
-import { canonicalPreset, decimals4, pageTitle, significant4, statusSummary, withArticle, withNumbers } from '../../web/text.js';
+import { canonicalPreset, decimals4, makerHint, pageTitle, significant4, statusSummary, withArticle, withNumbers } from '../../web/text.js';
 
 const failures = [];
 let checks = 0;
@@ -92,6 +92,25 @@ section('edits, undo, redo', () => {
   equal(p.redo(), null, 'a redo past the last design');
   equal(p.state.history.map((e) => e.preset.n), [0, 1, 2], 'the history after undoing and redoing everything');
   equal(p.state.history.map((e) => e.what), ['edit 1', 'edit 2', 'edit 3'], 'what the history says after travelling');
+});
+
+section('a design opened from a file starts a new history', () => {
+  const p = page();
+  p.state.preset = { n: 0 };
+  for (let n = 1; n <= 3; ++n) p.edit({ n });
+  p.undo();
+  const before = p.notified;
+  // As files.js opens a preset: shown without recording, then a new history.
+  p.state.preset = { file: 'grid-3x3' };
+  p.state.startHistory();
+  check(p.notified === before + 1, 'a new history did not notify the page (Undo and Redo stay enabled)');
+  check(!p.state.canUndo && !p.state.canRedo && !p.state.edited, 'undo or redo left after opening a design');
+  equal(p.undo(), null, 'an undo right after opening a design');
+  equal(p.state.preset, { file: 'grid-3x3' }, 'an undo after opening brought the previous file back');
+  p.edit({ n: 7 });
+  equal(p.undo().what, 'edit 7', 'an edit of the opened design');
+  equal(p.state.preset, { file: 'grid-3x3' }, 'undoing the first edit gives the design as opened');
+  equal(p.undo(), null, 'Undo walked back past the opened design');
 });
 
 section('a new edit forgets the redo stack', () => {
@@ -374,6 +393,19 @@ section('one number format a page', () => {
     'buildable over [0.2702, 1.3473] only (70.3 % of the flexion interval)', 'a part of it (shares keep their one decimal)');
   equal(statusSummary('buildable over the whole flexion interval [0.1, 0.2] (swept at 40 samples a side)', significant4),
     'buildable over the whole flexion interval (swept at 40 samples a side)', 'a coarse sweep');
+});
+
+section('causes in a maker\'s words', () => {
+  const said = (h) => { const r = makerHint(h, decimals4); return `${r.verb} ${r.subject}${r.tail}`; };
+  equal(said('increase trajectory[2][2] (now 1.5) by more than about 0.32'), 'raise point 2 of the trajectory by more than 0.3200 (now 1.5000)', 'a trajectory point up');
+  equal(said('decrease trajectory[0][1] (now 0) by more than about 1.547e-05'), 'move point 0 of the trajectory −y by more than 1.55e-5 (now 0.0000)', 'a trajectory point sideways');
+  equal(said('decrease apex_heights[3] (now -0.5) by more than about 0.2'), 'lower apex 3 by more than 0.2000 (now -0.5000)', 'an apex');
+  equal(said('increase grid.u_heights[1] (now -1.4) by more than about 0.05'), 'raise u line 1 of the grid by more than 0.0500 (now -1.4000)', 'a grid line');
+  equal(said('increase tube.apex_heights[0] (now 2) by more than about 0.1'), "raise the tube's apex 0 by more than 0.1000 (now 2.0000)", 'a tube apex');
+  equal(said('increase couplings[1].free_height (now 2) by more than about 0.1'), 'raise the free line of coupling 1 by more than 0.1000 (now 2.0000)', 'a coupling');
+  equal(said('increase directions[0][1] (now 0) by more than about 2.803e-06'), 'turn direction 0 (its y up by more than 2.80e-6) (now 0.0000)', 'a direction');
+  equal(makerHint('increase trajectory[2][2] (now 1.5) by more than about 0.32', decimals4).field, 'trajectory[2][2]', 'the field kept for the handle');
+  equal(makerHint('no single number', decimals4), { verb: '', subject: '', tail: 'no single number', field: null }, 'a text it does not know');
 });
 
 section('page titles', () => {

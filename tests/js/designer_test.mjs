@@ -73,12 +73,38 @@ try {
     check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'red panels on the default preset');
   }
   {
+    // At 1366 x 768 with each section open (issue 39): the slider and the status stay in the
+    // window, the panel ends inside it, one section open at a time.
+    for (const id of ['targets', 'thickness', 'energy']) {
+      await page.click(`#${id} summary`);
+      await page.waitForTimeout(100);
+      await page.$eval('#panel', (p) => { p.scrollTop = p.scrollHeight; });  // scrolled to the section's end
+      const box = await page.evaluate(() => {
+        const rect = (id) => document.getElementById(id).getBoundingClientRect();
+        return { slider: rect('slider'), status: rect('status-box'), panel: rect('panel'), title: rect('title'),
+                 open: [...document.querySelectorAll('#targets, #thickness, #energy')].filter((d) => d.open).map((d) => d.id) };
+      });
+      check(box.slider.top >= 0 && box.slider.bottom <= 768 && box.status.bottom <= 768 && box.title.top >= 0,
+        `${id} open: the slider (${box.slider.top}-${box.slider.bottom}) or the status or the title leaves the window`);
+      check(box.panel.bottom <= 768, `${id} open: the panel ends at ${box.panel.bottom} px`);
+      check(box.open.length === 1 && box.open[0] === id, `${id} open: open sections ${box.open}`);
+      if (screenshot && id === 'thickness') await page.screenshot({ path: screenshot.replace(/\.png$/, '-section.png') });
+      await page.click(`#${id} summary`);
+      await page.$eval('#panel', (p) => { p.scrollTop = 0; });
+    }
+  }
+  {
     // Targets (issue 26, item 2): the figures live as `phedra metrics` has them, a
     // target typed in, Optimize reaches it (the same core as `phedra optimize`), Undo.
     await page.click('#targets summary');
     const shown = async () => Object.fromEntries(await page.$$eval('#targets-table tr',
-      (rows) => rows.map((r) => [r.cells[0].textContent, r.cells[1].textContent])));
+      (rows) => rows.map((r) => [r.dataset.figure, r.cells[1].textContent])));
     const figures = await shown();
+    // Names in words, the command's on hover (issue 39); the table within the panel.
+    const labels = await page.$$eval('#targets-table tr', (rows) => rows.map((r) => [r.cells[0].textContent, r.title]));
+    check(labels[1][0] === "Poisson's ratio ν₁₃" && labels[1][1].includes('--target poisson.nu_13'), `the second row reads ${JSON.stringify(labels[1])}`);
+    const overflow = await page.$eval('#targets-table', (t) => t.getBoundingClientRect().right - t.closest('#panel, body').getBoundingClientRect().right);
+    check(overflow <= 0, `the Targets table overflows the panel by ${overflow} px`);
     const cli = JSON.parse(execFileSync(phedra, ['metrics', preset, '--json'], { encoding: 'utf8' })).figures;
     check(Object.keys(figures).length === 8 && Object.keys(cli).every((k) => k in figures), `the Targets box's figures: ${JSON.stringify(figures)}`);
     check(Math.abs(Number(figures['poisson.nu_13']) - cli['poisson.nu_13']) < 1e-3, `nu_13 shown ${figures['poisson.nu_13']} vs CLI ${cli['poisson.nu_13']}`);
@@ -89,7 +115,11 @@ try {
     await page.waitForFunction(() => /^(reached|not reached|optimize refused)/.test(document.getElementById('optimize-result').textContent),
       null, { timeout: 60000 });
     const result = await page.$eval('#optimize-result', (e) => e.textContent);
-    check(result.startsWith('reached: poisson.nu_13=-1: '), `optimize result: "${result}"`);
+    check(result.startsWith("reached: Poisson's ratio ν₁₃ = -1: "), `optimize result: "${result}"`);
+    check(/t\* (kept at|moved from .* the slider with it)/.test(result), `the result does not say what became of t*: "${result}"`);
+    const star = await api(() => window.phedraDesigner.info());
+    const fraction = await api(() => window.phedraDesigner.fraction());
+    check(Math.abs(fraction - (star.t_star - star.t_lambda) / (star.t_mu - star.t_lambda)) < 1e-9, `the slider left t* after Optimize: ${fraction}`);
     await settled();
     await page.waitForTimeout(300);
     const after = await shown();
@@ -129,8 +159,38 @@ try {
     const text = await page.$eval('#thick-status', (e) => e.textContent);
     check(text.includes('thick interval [') && text.includes('56 plates'), `the Thick panels box says: "${text}"`);
     if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-plates.png') });
+    // With plates shown, the status and the green bar are the plates' (issue 39): outside their thick interval they collide.
+    const barPart = () => page.$eval('#buildable-part', (e) => [parseFloat(e.style.left), parseFloat(e.style.width)]);
+    const flexion = await api(() => window.phedraDesigner.info());
+    const range = flexion.t_mu - flexion.t_lambda;
+    const [left, width] = await barPart();
+    check(Math.abs(left - 100 * (cli.thick_interval[0] - flexion.t_lambda) / range) < 0.5 &&
+          Math.abs(width - 100 * (cli.thick_interval[1] - cli.thick_interval[0]) / range) < 0.5, `the green bar with plates: ${left} % + ${width} %`);
+    await api((t) => window.phedraDesigner.setT(t), cli.thick_interval[0] - 0.3 * (cli.thick_interval[0] - flexion.t_lambda));
+    const outside = await status();
+    check(/^plates \S+ thick: they move over \[.*\] only .*; at t = \S+ they collide/.test(outside) &&
+          (await page.$eval('#message', (e) => e.classList.contains('unbuildable'))), `the status outside the thick interval: "${outside}"`);
+    await api((t) => window.phedraDesigner.setT(t), flexion.t_star);
+    check(!(await status()).includes('they collide') && (await page.$eval('#message', (e) => e.classList.contains('buildable'))),
+      `the status at t* with plates: "${await status()}"`);
     await page.click('#thick-show');
+    check((await status()).startsWith('buildable over the whole flexion interval'), `the status after Hide plates: "${await status()}"`);
     check(!(await api(() => window.phedraDesigner.platesShown())), 'Hide plates left them shown');
+    // Too thick (issue 39): said in the page's words, with the thickest that fits and the panel shown; that one fits.
+    await page.fill('#thick-value', '3');
+    await page.click('#thick-show');
+    const refused = await page.$eval('#thick-status', (e) => e.textContent);
+    const thickest = /The thickest plates that fit at t\* on this side are ([0-9.]+) thick/.exec(refused);
+    check(/^plates \S+ thick do not fit on panel \d+ \(strip \d+, column \d+, highlighted\): /.test(refused) && thickest && !refused.includes('--thickness'),
+      `the refusal of plates 3 thick: "${refused}"`);
+    const panelNamed = Number(/panel (\d+)/.exec(refused)?.[1]);
+    check((await api(() => window.phedraDesigner.highlightedPanel())) === panelNamed, `panel ${panelNamed} not highlighted`);
+    if (thickest) {
+      await page.fill('#thick-value', String(0.9 * Number(thickest[1])));
+      await page.click('#thick-show');
+      await page.waitForFunction(() => window.phedraDesigner.platesShown(), null, { timeout: 30000 });
+      await page.click('#thick-show');
+    }
     await page.click('#thickness summary');
   }
   {
@@ -201,6 +261,21 @@ try {
     check((await api(() => window.phedraDesigner.collidingPanels())).length === 0, 'orange panels inside the buildable part');
   }
   {
+    // A collision at t* (issue 39): its panels orange at t*, a cause to click with the fields that free it.
+    const file = path.join(data, 'self-intersecting.json');
+    await loadFile(file);
+    await page.waitForTimeout(400);
+    const pair = [...cliBuildability(file).collision_at_t_star.matchAll(/panel (\d+)/g)].map((m) => Number(m[1]));
+    const orange = await api(() => window.phedraDesigner.collidingPanels());
+    check(pair.every((f) => orange.includes(f)), `orange panels at t*: ${orange}, the CLI's collision: ${pair}`);
+    check((await page.$eval('#why-count', (e) => e.textContent)).startsWith('the configuration at t* collides'), 'no cause for the collision at t*');
+    const changes = await page.$$eval('#why-list li button.change', (b) => b.map((e) => e.textContent));
+    check(changes.length >= 1 && changes[0].startsWith('change: '), `the collision's changes: ${changes}`);
+    await page.click('#why-list li button.change');
+    check((await api(() => window.phedraDesigner.highlightedPanel())) === pair[0], 'the collision\'s panel not highlighted');
+    if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-collision.png') });
+  }
+  {
     // Repair (issue 14): the button finds a buildable design near a tube with
     // bow-ties (the same core as `phedra repair`), `phedra check` passes it, and
     // Undo brings the bow-ties back.
@@ -256,8 +331,11 @@ try {
     check(projected > 0, 'no keep step moved the other heights');
     const moved = await api(() => window.phedraDesigner.preset());
     check(moved.apex_heights.some((h, j) => j !== 1 && h !== start.apex_heights[j]), 'the other heights did not follow');
-    // Without the mode the same value makes bow-ties.
+    // Without the mode the same value makes bow-ties; its message goes with it (issue 39).
+    check((await page.$eval('#repair-result', (e) => e.textContent)).startsWith('keep buildable'), 'no keep-buildable message while dragging');
     await page.uncheck('#keep');
+    const left = await page.$eval('#repair-result', (e) => (e.hidden ? '' : e.textContent));
+    check(!left.startsWith('keep buildable'), `"${left}" stays after keep buildable is switched off`);
     check(await api((p) => window.phedraDesigner.apply(p), start), 'the default preset again');
     await api((v) => window.phedraDesigner.edit({ key: 'apex_heights', index: 1, value: [v, 0, 0] }), start.apex_heights[2] - 0.2);
     check((await api(() => window.phedraDesigner.invalidPanels())).length > 0, 'the same height without keep buildable has no bow-ties');
@@ -277,7 +355,7 @@ try {
     await page.waitForTimeout(300);
     const b = await settled();
     check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'bow-ties after a keep-buildable drag');
-    check(b.buildable || (await page.$eval('#repair-result', (e) => e.textContent)).startsWith('no buildable'),
+    check(b.buildable || (await page.$eval('#repair-result', (e) => e.textContent)).startsWith('not repaired'),
       `after a keep-buildable drag: "${await status()}" / "${await page.$eval('#repair-result', (e) => e.textContent)}"`);
     // It keeps t* (the field that defines it held), or says why it moved.
     const starNow = (await api(() => window.phedraDesigner.info())).t_star;
@@ -457,16 +535,21 @@ try {
   check(3 * sample.samples[0].vertices.length === positions.length, 'the saved preset has another vertex count');
   check(worst < 1e-9 * info.model_size, `the saved preset differs from the page by ${worst}`);
 
-  // The shipped presets menu opens one (undoably).
+  // The shipped presets menu opens one, with a history of its own (issue 39:
+  // Undo walked back through earlier loads).
   {
     const options = await page.$$eval('#presets option', (list) => list.map((o) => o.value).filter(Boolean));
     check(options.includes('grid-3x3.json') && options.includes('default.json'), `presets menu: ${options}`);
+    check(!(await page.$eval('#undo', (e) => e.disabled)), 'nothing to undo before opening a preset (the test edited the design)');
     const mine = await api(() => window.phedraDesigner.preset());
     await page.selectOption('#presets', 'grid-3x3.json');
     await page.waitForFunction(() => window.phedraDesigner.preset().name === 'grid-3x3', null, { timeout: 10000 });
+    check(await page.$eval('#undo', (e) => e.disabled), 'Undo enabled right after opening a preset');
     await page.keyboard.press('Control+z');
     const back = await api(() => window.phedraDesigner.preset());
-    check(JSON.stringify(back) === JSON.stringify(mine), 'Ctrl+Z after opening a shipped preset does not bring the design back');
+    check(back.name === 'grid-3x3', `Ctrl+Z after opening grid-3x3 brought ${back.name} back`);
+    check(await api((p) => window.phedraDesigner.apply(p), mine), 'the design before grid-3x3 again');
+    await settled();
   }
 
   // A .glb phedra wrote opens as the preset it carries; one without a preset says so.
@@ -487,9 +570,12 @@ try {
     await page.waitForTimeout(200);
     const said = await page.$eval('#message', (e) => e.textContent);
     check(said.includes('stray.glb carries no preset'), `a .glb without a preset: "${said}"`);
+    // A design opened from a .glb starts a history of its own: Ctrl+Z stays on it.
     await page.keyboard.press('Control+z');
     const back = await api(() => window.phedraDesigner.preset());
-    check(JSON.stringify(back) === JSON.stringify(mine), 'Ctrl+Z after opening a .glb does not bring the design back');
+    check(back.name === 'helix-tube', `Ctrl+Z after opening a .glb brought ${back.name} back`);
+    check(await api((p) => window.phedraDesigner.apply(p), mine), 'the design before the .glb again');
+    await settled();
   }
 
 

@@ -63,6 +63,8 @@ export function installApi({ camera, renderer, state, designer, surface, handles
     buildability: () => state.buildability,
     invalidPanels: () => [...state.invalidPanels].sort((a, b) => a - b),
     collidingPanels: () => [...state.collidingPanels].sort((a, b) => a - b),
+    /// Where the slider is: a fraction of the flexion interval in [0, 1].
+    fraction: () => state.fraction,
     /// Moves the slider to t (as a user would) and waits for the colours.
     setT: (t) => {
       state.fraction = state.fractionOf(t);

@@ -121,6 +121,10 @@ export function createBuildability({ state, designer, panel, surface, apply, onF
     }
   }
   $('repair').addEventListener('click', () => repairDesign());
+  // Keep buildable switched off: its "the handle stops here" no longer applies.
+  $('keep').addEventListener('change', () => {
+    if (!keepBuildable() && $('repair-result').textContent.startsWith('keep buildable')) panel.showRepair('');
+  });
 
   /// One drag step through the core without the round trip through JSON text
   /// (the hot path while dragging; the topology does not change): Designer.set,

@@ -35,12 +35,14 @@ export function createFiles({ renderer, scene, camera, state, designer, panel, a
     if (name && name !== state.preset.name) apply({ ...clone(state.preset), name }, { what: 'rename' });
   });
 
-  /// Opens a preset the user picked, dropped or chose from the shipped ones (undoable);
-  /// `name`: its file's name (a .glb's for the preset inside one).
+  /// Opens a preset the user picked, dropped or chose from the shipped ones;
+  /// `name`: its file's name (a .glb's for the preset inside one). A new
+  /// design: its own undo history (state.startHistory).
   function openPreset(text, name) {
     try {
       const loaded = JSON.parse(text);
-      if (apply(loaded, { what: `load of ${name}` })) {
+      if (apply(loaded, { what: `load of ${name}`, record: false })) {
+        state.startHistory();
         state.loadedName = loaded.name ?? name.replace(/\.(json|glb)$/i, '');
         state.fileName = baseName(name);
         panel.showTitle();

@@ -5,7 +5,7 @@
 // DesignState; the only edit it makes itself is a sign toggle, which it hands
 // to `onSign`. What varies in length (status, causes, results, figures) lives
 // in #status-box, of a fixed height: the buttons never move.
-import { pageTitle, statusSummary, withArticle, withNumbers } from '../text.js';
+import { makerHint, pageTitle, statusSummary, withArticle, withNumbers } from '../text.js';
 import { fieldsInHint, modeOf } from './edits.js';
 import { $, format } from './util.js';
 
@@ -15,8 +15,28 @@ import { $, format } from './util.js';
 export function createPanel({ state, locate, onSign, onCause = () => {} }) {
   /// The status when the last edit was accepted: what the buildability report
   /// says ("buildable over [a, b]", or what is wrong), never just "valid".
+  /// While plates show: what they allow (their thick interval) and whether they
+  /// collide at the slider's t; null otherwise.
+  function plateStatus() {
+    const { thick: th, info } = state;
+    if (!th) return null;
+    const t = state.tOf(state.fraction);
+    const head = `plates ${format(th.thickness)} thick`;
+    if (!th.interval) return { text: `${head}: they collide at t*: ${withNumbers(th.at_t_star, format)}`, fits: false };
+    const [a, b] = th.interval;
+    const whole = a <= info.t_lambda && b >= info.t_mu;
+    const inside = t >= a && t <= b;
+    return {
+      text: `${head}: ${whole ? 'they move over the whole flexion interval' : `they move over [${format(a)}, ${format(b)}] only (their thick interval)`}` +
+        (inside ? '' : `; at t = ${format(t)} they collide (move the slider into the green part)`),
+      fits: inside,
+    };
+  }
+
   function statusText() {
     const { buildability, invalidPanels, info } = state;
+    const plates = plateStatus();
+    if (plates) return plates.text;
     if (buildability) return statusSummary(buildability.summary, format);
     if (invalidPanels.size) {
       const list = [...invalidPanels].slice(0, 8).join(', ') + (invalidPanels.size > 8 ? ', …' : '');
@@ -32,8 +52,9 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     if (!failure) {
       message.textContent = statusText();
       message.classList.remove('error');
-      message.classList.toggle('buildable', Boolean(buildability && buildability.buildable));
-      message.classList.toggle('unbuildable', Boolean(invalidPanels.size || (buildability && !buildability.buildable)));
+      const plates = plateStatus();
+      message.classList.toggle('buildable', plates ? plates.fits : Boolean(buildability && buildability.buildable));
+      message.classList.toggle('unbuildable', plates ? !plates.fits : Boolean(invalidPanels.size || (buildability && !buildability.buildable)));
       label.hidden = true;
       return;
     }
@@ -152,11 +173,13 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     const { info, buildability: b } = state;
     const bar = $('buildable-part');
     const range = info.t_mu - info.t_lambda;
-    if (b && b.interval && range > 0) {
+    // While plates show, the green part is where they move (their thick interval).
+    const part = state.thick ? state.thick.interval : b && b.interval;
+    if (part && range > 0) {
       bar.hidden = false;
-      bar.style.left = `${(100 * (b.interval[0] - info.t_lambda)) / range}%`;
-      bar.style.width = `${Math.max(0.5, (100 * (b.interval[1] - b.interval[0])) / range)}%`;
-      bar.title = `buildable over [${format(b.interval[0])}, ${format(b.interval[1])}]`;
+      bar.style.left = `${(100 * (part[0] - info.t_lambda)) / range}%`;
+      bar.style.width = `${Math.max(0.5, (100 * (part[1] - part[0])) / range)}%`;
+      bar.title = `${state.thick ? 'the plates move over' : 'buildable over'} [${format(part[0])}, ${format(part[1])}]`;
     } else {
       bar.hidden = true;
     }
@@ -164,7 +187,14 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     list.textContent = '';
     const invalid = b ? b.invalid : [];
     const ends = b && b.ends ? b.ends : [];
-    why.hidden = invalid.length === 0 && ends.length === 0;
+    const atStar = b && invalid.length === 0 ? b.at_t_star : null;
+    why.hidden = invalid.length === 0 && ends.length === 0 && !atStar;
+    if (atStar) {
+      // The configuration at t* collides: its panels (orange at t*) and what frees it.
+      $('why-count').textContent = 'the configuration at t* collides; what to change (click one: its handle and panels light up):';
+      list.append(collisionItem(atStar));
+      return;
+    }
     if (invalid.length === 0 && ends.length) {
       // Simple panels, a part of the motion: say what ends it, as the command does.
       $('why-count').textContent = 'what ends the buildable part (click one: its panels light up):';
@@ -181,6 +211,45 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
       more.textContent = `… and ${invalid.length - 12} more (phedra check --json lists them all)`;
       list.append(more);
     }
+  }
+
+  /// A hint as a maker reads it ("raise **point 2 of the trajectory** by more
+  /// than 0.3200 (now 1.5000)"): the nodes of a cause's button.
+  function makerParts(hint) {
+    const words = makerHint(hint, format);
+    if (!words.verb) return [words.tail];
+    const b = document.createElement('b');
+    b.textContent = words.subject;
+    return [`${words.verb} `, b, words.tail];
+  }
+
+  /// The collision at t*: each field hint a button (its handle selected, the
+  /// first panel highlighted), the command's words behind "details".
+  function collisionItem(c) {
+    const item = document.createElement('li');
+    item.dataset.panel = String(c.panels[0]);
+    c.hints.forEach((h, k) => {
+      const change = document.createElement('button');
+      change.type = 'button';
+      change.className = 'change';
+      const field = fieldsInHint(h)[0] ?? null;
+      change.dataset.field = field ?? '';
+      change.append(k ? 'or: ' : 'change: ', ...makerParts(h));
+      change.title = field ? `${field}: select its handle and panel ${c.panels[0]}` : `show panel ${c.panels[0]}`;
+      change.addEventListener('click', (e) => { e.stopPropagation(); pick(item, change, { panel: c.panels[0], field }); });
+      item.append(change);
+    });
+    const details = document.createElement('details');
+    const summary = document.createElement('summary');
+    summary.textContent = `panels ${c.panels.join(' and ')}: details`;
+    details.append(summary, withNumbers(c.text, format));
+    item.append(details);
+    item.title = `show panels ${c.panels.join(' and ')}`;
+    item.addEventListener('click', (e) => {
+      if (e.target.closest('summary')) return;
+      pick(item, null, { panel: c.panels[0], field: null });
+    });
+    return item;
   }
 
   /// What ends the buildable part on one side: "above t = 0.3133: the hinge between ...".
@@ -205,12 +274,8 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
       change.className = 'change';
       const field = fieldsInHint(h)[0] ?? null;
       change.dataset.field = field ?? '';
-      const text = withNumbers(h, format);
-      const at = field ? text.indexOf(field) : -1;
-      const b = document.createElement('b');
-      b.textContent = field ?? '';
-      change.append(k ? 'or: ' : 'change: ', ...(at >= 0 ? [text.slice(0, at), b, text.slice(at + field.length)] : [text]));
-      change.title = field ? `select the handle of ${field} and panel ${p.panel}` : `show panel ${p.panel}`;
+      change.append(k ? 'or: ' : 'change: ', ...makerParts(h));
+      change.title = field ? `${field}: select its handle and panel ${p.panel}` : `show panel ${p.panel}`;
       change.addEventListener('click', (e) => { e.stopPropagation(); pick(item, change, { panel: p.panel, field }); });
       item.append(change);
     });

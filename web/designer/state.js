@@ -19,6 +19,7 @@ export class DesignState {
     this.invalidPanels = new Set();    // not simple (the shape is a constant of the design)
     this.collidingPanels = new Set();  // penetrating at the slider's t
     this.buildability = null;          // the core's Designer.buildability() (null while it is computed)
+    this.thick = null;                 // the Thick panels box's report while its plates show (Designer.thick), else null
     this.loadedName = null;            // the name of the preset as loaded, to say what an edited design came from
     this.fileName = null;              // the file it was loaded from ("default.json"), when known
     // Every accepted edit (a drag counts once, from press to release), repairs
@@ -49,6 +50,15 @@ export class DesignState {
   remember(previous, what) {
     this.history.push({ preset: clone(previous), what, origin: this.loadedName, file: this.fileName });
     if (this.history.length > this.limit) this.history.shift();
+    this.future.length = 0;
+    this.onHistory();
+  }
+
+  /// A design opened from a file or the presets menu starts a new history:
+  /// Undo and Redo stay within one design (they walked back through earlier
+  /// loads: the 7th Undo after opening default.json brought grid-3x3 back).
+  startHistory() {
+    this.history.length = 0;
     this.future.length = 0;
     this.onHistory();
   }

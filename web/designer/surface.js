@@ -208,8 +208,15 @@ export function createSurface({ scene, state, designer, requestRender, showT, sc
   function scheduleCollisions() {
     clearTimeout(collisionTimer);
     collisionTimer = setTimeout(() => {
-      const list = designer.collisions(state.tOf(state.fraction));
+      const t = state.tOf(state.fraction);
+      const list = designer.collisions(t);
       const next = new Set(list.ok === false ? [] : Array.from(list));
+      // At t* itself a collision the report found (a hinge shut and through
+      // there is not a penetration the per-t test sees): its panels too.
+      const atStar = state.buildability?.at_t_star;
+      if (atStar && Math.abs(t - state.info.t_star) <= 1e-9 * Math.max(1, Math.abs(state.info.t_mu - state.info.t_lambda))) {
+        for (const p of atStar.panels) next.add(p);
+      }
       if (!sameSet(next, state.collidingPanels)) {
         state.collidingPanels = next;
         colourPanels();

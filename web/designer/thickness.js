@@ -8,7 +8,9 @@ import * as THREE from 'three';
 import { $, format } from './util.js';
 
 /// `designer`: the core's Designer; `surface`: the panels (hidden while plates show).
-export function createThickness({ scene, state, designer, surface, requestRender }) {
+/// `onChange`: the plates were shown, hidden or moved to another t (the status
+/// and the buildable bar follow the plates' thick interval while they show).
+export function createThickness({ scene, state, designer, surface, requestRender, onChange = () => {} }) {
   const plates = new THREE.Mesh(new THREE.BufferGeometry(), new THREE.MeshLambertMaterial({ color: 0xc9a36b, flatShading: true }));
   plates.visible = false;
   scene.add(plates);
@@ -64,7 +66,17 @@ export function createThickness({ scene, state, designer, surface, requestRender
     const r = designer.thick(JSON.stringify({ thickness, side: side.value }));
     if (!r.ok) {
       report = null;
-      say(`${r.field ? `${r.field}: ` : ''}${r.message}`);
+      if (r.field === 'thickness') {
+        // Too thick for a panel: in the page's words, the thickest that fits, the panel shown.
+        // The core says "a plate T thick does not fit on panel K (strip i, column j): WHY (a thinner plate, or a wider panel)".
+        const m = /does not fit on panel (\d+)( \(([^)]*)\))?: (.*?)( \(a thinner plate, or a wider panel\))?$/.exec(r.message);
+        if (m) surface.highlightPanel(Number(m[1]));
+        const what = m ? `on panel ${m[1]} (${m[3] ? `${m[3]}, ` : ''}highlighted): ${m[4]}` : `: ${r.message}`;
+        say(`plates ${format(thickness)} thick do not fit ${what}.` +
+            (r.thickest ? ` The thickest plates that fit at t* on this side are ${format(r.thickest)} thick: type that or less above.` : ''));
+      } else {
+        say(`${r.field ? `${r.field}: ` : ''}${r.message}`);
+      }
       return hide();
     }
     report = r;
@@ -77,6 +89,8 @@ export function createThickness({ scene, state, designer, surface, requestRender
     plates.visible = shown;
     surface.showPanels(!shown);
     button.textContent = shown ? 'Hide plates' : 'Show plates';
+    state.thick = shown ? report : null;
+    onChange();
     requestRender();
   }
 
@@ -85,6 +99,8 @@ export function createThickness({ scene, state, designer, surface, requestRender
     plates.visible = false;
     surface.showPanels(true);
     button.textContent = 'Show plates';
+    state.thick = null;
+    onChange();
     requestRender();
   }
 
@@ -99,6 +115,7 @@ export function createThickness({ scene, state, designer, surface, requestRender
         plates.visible = false;
         surface.showPanels(true);
       }
+      onChange();
     },
     /// A new design settled: cut its plates again when they are shown.
     refresh() { if (shown) compute(); },
