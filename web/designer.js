@@ -72,7 +72,15 @@ const thickness = createThickness({ scene: stage.scene, state, designer, surface
 const energy = createEnergy({ state, designer });
 // One section open at a time (Targets, Thick panels, Energy): the panel stays within a 768 px window.
 const sections = ['targets', 'thickness', 'energy'].map((id) => $(id));
-for (const d of sections) d.addEventListener('toggle', () => { if (d.open) for (const o of sections) if (o !== d) o.open = false; });
+// An opened section is brought up to just under the design line, slider and status (which stay).
+for (const d of sections) {
+  d.addEventListener('toggle', () => {
+    if (!d.open) return;
+    for (const o of sections) if (o !== d) o.open = false;
+    const below = $('panel-head').getBoundingClientRect().bottom;
+    $('panel').scrollTop += d.getBoundingClientRect().top - below - 4;
+  });
+}
 
 /// The slider at t* (the input configuration: the surface passes through the
 /// handles); `before`: t* of the previous design, to say when an edit moved it

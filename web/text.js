@@ -28,8 +28,8 @@ export function withNumbers(text, format) {
 }
 
 /// A field hint of the core ("increase trajectory[2][2] (now 1.5) by more than
-/// about 0.32") as a maker reads it: {verb: 'raise', subject: 'point 2 of the
-/// trajectory', tail: ' by more than 0.3200 (now 1.5000)', field:
+/// about 0.32") as a maker reads it, in the handles' names (handles.js
+/// handleName): {verb: 'raise', subject: 'trajectory point 2', tail: ' by more than 0.3200 (now 1.5000)', field:
 /// 'trajectory[2][2]'}; numbers by `format`. A text it does not know: verb ''
 /// and the text as the tail.
 export function makerHint(hint, format) {
@@ -40,19 +40,19 @@ export function makerHint(hint, format) {
   const amount = format(Number(by)), was = `(now ${format(Number(now))})${withNumbers(rest, format)}`;
   const height = (subject) => ({ verb: up ? 'raise' : 'lower', subject, tail: ` by more than ${amount} ${was}`, field });
   let k;
-  if ((k = /^apex_heights\[(\d+)\]$/.exec(field))) return height(`apex ${k[1]}`);
-  if ((k = /^tube\.apex_heights\[(\d+)\]$/.exec(field))) return height(`the tube's apex ${k[1]}`);
+  if ((k = /^apex_heights\[(\d+)\]$/.exec(field))) return height(`apex S_${k[1]}`);
+  if ((k = /^tube\.apex_heights\[(\d+)\]$/.exec(field))) return height(`apex S_${k[1]}`);
   if ((k = /^grid\.([uw])_heights\[(\d+)\]$/.exec(field))) return height(`${k[1]} line ${k[2]} of the grid`);
-  if ((k = /^row\.free_heights\[(\d+)\]$/.exec(field))) return height(`line ${k[1]} of the row`);
-  if ((k = /^couplings\[(\d+)\]\.free_heights\[(\d+)\]$/.exec(field))) return height(`line ${k[2]} of coupling ${k[1]}`);
-  if ((k = /^couplings\[(\d+)\]\.free_height$/.exec(field))) return height(`the free line of coupling ${k[1]}`);
-  if ((k = /^trajectory\[(\d+)\]\[2\]$/.exec(field))) return height(`point ${k[1]} of the trajectory`);
+  if ((k = /^row\.free_heights\[(\d+)\]$/.exec(field))) return height(`height of row cell ${Number(k[1]) + 1}`);
+  if ((k = /^couplings\[(\d+)\]\.free_heights\[(\d+)\]$/.exec(field))) return height(`free height ${k[2]} of coupling ${k[1]}`);
+  if ((k = /^couplings\[(\d+)\]\.free_height$/.exec(field))) return height(`free height of coupling ${k[1]}`);
+  if ((k = /^trajectory\[(\d+)\]\[2\]$/.exec(field))) return height(`trajectory point ${k[1]}`);
   const axis = (c) => 'xyz'[Number(c)];
   if ((k = /^trajectory\[(\d+)\]\[([01])\]$/.exec(field))) {
-    return { verb: 'move', subject: `point ${k[1]} of the trajectory`, tail: ` ${up ? '+' : '−'}${axis(k[2])} by more than ${amount} ${was}`, field };
+    return { verb: 'move', subject: `trajectory point ${k[1]}`, tail: ` ${up ? '+' : '−'}${axis(k[2])} by more than ${amount} ${was}`, field };
   }
   if ((k = /^directions\[(\d+)\]\[([012])\]$/.exec(field))) {
-    return { verb: 'turn', subject: `direction ${k[1]}`, tail: ` (its ${axis(k[2])} ${up ? 'up' : 'down'} by more than ${amount}) ${was}`, field };
+    return { verb: 'turn', subject: `direction of profile ${k[1]}`, tail: ` (its ${axis(k[2])} ${up ? 'up' : 'down'} by more than ${amount}) ${was}`, field };
   }
   return { verb: direction, subject: field, tail: ` by more than ${amount} ${was}`, field };
 }

@@ -397,13 +397,13 @@ section('one number format a page', () => {
 
 section('causes in a maker\'s words', () => {
   const said = (h) => { const r = makerHint(h, decimals4); return `${r.verb} ${r.subject}${r.tail}`; };
-  equal(said('increase trajectory[2][2] (now 1.5) by more than about 0.32'), 'raise point 2 of the trajectory by more than 0.3200 (now 1.5000)', 'a trajectory point up');
-  equal(said('decrease trajectory[0][1] (now 0) by more than about 1.547e-05'), 'move point 0 of the trajectory −y by more than 1.55e-5 (now 0.0000)', 'a trajectory point sideways');
-  equal(said('decrease apex_heights[3] (now -0.5) by more than about 0.2'), 'lower apex 3 by more than 0.2000 (now -0.5000)', 'an apex');
+  equal(said('increase trajectory[2][2] (now 1.5) by more than about 0.32'), 'raise trajectory point 2 by more than 0.3200 (now 1.5000)', 'a trajectory point up');
+  equal(said('decrease trajectory[0][1] (now 0) by more than about 1.547e-05'), 'move trajectory point 0 −y by more than 1.55e-5 (now 0.0000)', 'a trajectory point sideways');
+  equal(said('decrease apex_heights[3] (now -0.5) by more than about 0.2'), 'lower apex S_3 by more than 0.2000 (now -0.5000)', 'an apex');
   equal(said('increase grid.u_heights[1] (now -1.4) by more than about 0.05'), 'raise u line 1 of the grid by more than 0.0500 (now -1.4000)', 'a grid line');
-  equal(said('increase tube.apex_heights[0] (now 2) by more than about 0.1'), "raise the tube's apex 0 by more than 0.1000 (now 2.0000)", 'a tube apex');
-  equal(said('increase couplings[1].free_height (now 2) by more than about 0.1'), 'raise the free line of coupling 1 by more than 0.1000 (now 2.0000)', 'a coupling');
-  equal(said('increase directions[0][1] (now 0) by more than about 2.803e-06'), 'turn direction 0 (its y up by more than 2.80e-6) (now 0.0000)', 'a direction');
+  equal(said('increase tube.apex_heights[0] (now 2) by more than about 0.1'), 'raise apex S_0 by more than 0.1000 (now 2.0000)', 'a tube apex');
+  equal(said('increase couplings[1].free_height (now 2) by more than about 0.1'), 'raise free height of coupling 1 by more than 0.1000 (now 2.0000)', 'a coupling');
+  equal(said('increase directions[0][1] (now 0) by more than about 2.803e-06'), 'turn direction of profile 0 (its y up by more than 2.80e-6) (now 0.0000)', 'a direction');
   equal(makerHint('increase trajectory[2][2] (now 1.5) by more than about 0.32', decimals4).field, 'trajectory[2][2]', 'the field kept for the handle');
   equal(makerHint('no single number', decimals4), { verb: '', subject: '', tail: 'no single number', field: null }, 'a text it does not know');
 });

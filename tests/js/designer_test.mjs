@@ -78,14 +78,17 @@ try {
     for (const id of ['targets', 'thickness', 'energy']) {
       await page.click(`#${id} summary`);
       await page.waitForTimeout(100);
-      await page.$eval('#panel', (p) => { p.scrollTop = p.scrollHeight; });  // scrolled to the section's end
-      const box = await page.evaluate(() => {
-        const rect = (id) => document.getElementById(id).getBoundingClientRect();
-        return { slider: rect('slider'), status: rect('status-box'), panel: rect('panel'), title: rect('title'),
+      const box = await page.evaluate((id) => {
+        const rect = (e) => (typeof e === 'string' ? document.getElementById(e) : e).getBoundingClientRect();
+        return { slider: rect('slider'), status: rect('status-box'), panel: rect('panel'), title: rect('title'), head: rect('panel-head'),
+                 summary: rect(document.querySelector(`#${id} summary`)),
                  open: [...document.querySelectorAll('#targets, #thickness, #energy')].filter((d) => d.open).map((d) => d.id) };
-      });
+      }, id);
       check(box.slider.top >= 0 && box.slider.bottom <= 768 && box.status.bottom <= 768 && box.title.top >= 0,
         `${id} open: the slider (${box.slider.top}-${box.slider.bottom}) or the status or the title leaves the window`);
+      // The opened section comes up just under the head, in view (not under it, not below the window).
+      check(box.summary.top >= box.head.bottom && box.summary.top <= box.head.bottom + 12,
+        `${id} open: its title at ${box.summary.top} px, the head ends at ${box.head.bottom} px`);
       check(box.panel.bottom <= 768, `${id} open: the panel ends at ${box.panel.bottom} px`);
       check(box.open.length === 1 && box.open[0] === id, `${id} open: open sections ${box.open}`);
       if (screenshot && id === 'thickness') await page.screenshot({ path: screenshot.replace(/\.png$/, '-section.png') });

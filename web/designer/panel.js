@@ -213,7 +213,7 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     }
   }
 
-  /// A hint as a maker reads it ("raise **point 2 of the trajectory** by more
+  /// A hint as a maker reads it ("raise **trajectory point 2** by more
   /// than 0.3200 (now 1.5000)"): the nodes of a cause's button.
   function makerParts(hint) {
     const words = makerHint(hint, format);
@@ -223,22 +223,28 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     return [`${words.verb} `, b, words.tail];
   }
 
-  /// The collision at t*: each field hint a button (its handle selected, the
-  /// first panel highlighted), the command's words behind "details".
-  function collisionItem(c) {
-    const item = document.createElement('li');
-    item.dataset.panel = String(c.panels[0]);
-    c.hints.forEach((h, k) => {
+  /// One button a field hint under `item` ("change: raise trajectory point 2 ...", then
+  /// "or: ..."): a click selects the field's handle and highlights `panel`.
+  function appendChanges(item, hints, panel) {
+    hints.forEach((h, k) => {
       const change = document.createElement('button');
       change.type = 'button';
       change.className = 'change';
       const field = fieldsInHint(h)[0] ?? null;
       change.dataset.field = field ?? '';
       change.append(k ? 'or: ' : 'change: ', ...makerParts(h));
-      change.title = field ? `${field}: select its handle and panel ${c.panels[0]}` : `show panel ${c.panels[0]}`;
-      change.addEventListener('click', (e) => { e.stopPropagation(); pick(item, change, { panel: c.panels[0], field }); });
+      change.title = field ? `${field}: select its handle and panel ${panel}` : `show panel ${panel}`;
+      change.addEventListener('click', (e) => { e.stopPropagation(); pick(item, change, { panel, field }); });
       item.append(change);
     });
+  }
+
+  /// The collision at t*: each field hint a button (its handle selected, the
+  /// first panel highlighted), the command's words behind "details".
+  function collisionItem(c) {
+    const item = document.createElement('li');
+    item.dataset.panel = String(c.panels[0]);
+    appendChanges(item, c.hints, c.panels[0]);
     const details = document.createElement('details');
     const summary = document.createElement('summary');
     summary.textContent = `panels ${c.panels.join(' and ')}: details`;
@@ -268,17 +274,7 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
     const item = document.createElement('li');
     item.dataset.panel = String(p.panel);
     const firstField = p.hints.map((h) => fieldsInHint(h)[0]).find((f) => f && locate(f)) ?? null;
-    p.hints.forEach((h, k) => {
-      const change = document.createElement('button');
-      change.type = 'button';
-      change.className = 'change';
-      const field = fieldsInHint(h)[0] ?? null;
-      change.dataset.field = field ?? '';
-      change.append(k ? 'or: ' : 'change: ', ...makerParts(h));
-      change.title = field ? `${field}: select its handle and panel ${p.panel}` : `show panel ${p.panel}`;
-      change.addEventListener('click', (e) => { e.stopPropagation(); pick(item, change, { panel: p.panel, field }); });
-      item.append(change);
-    });
+    appendChanges(item, p.hints, p.panel);
     const details = document.createElement('details');
     const summary = document.createElement('summary');
     const name = document.createElement('span');

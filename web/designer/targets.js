@@ -3,6 +3,7 @@
 // or ≤ a value) and Optimize: the nearest buildable design that meets them, by
 // the same core as the command (NLopt in WebAssembly, on this thread: the status
 // says so first). The result replaces the design; Undo brings the previous back.
+import { withNumbers } from '../text.js';
 import { $, format } from './util.js';
 
 const optimizeSeconds = 10;
@@ -161,7 +162,7 @@ export function createTargets({ state, designer, apply }) {
         const targeted = wanted.map((t) => /^[A-Za-z0-9_.]+/.exec(t)[0]);
         const others = now.ok ? otherChanges(figuresBefore, now.figures, targeted, format) : [];
         show(`reached: ${outcome}; ${r.changes.length} field${r.changes.length === 1 ? '' : 's'} changed, ` +
-          `${r.buildability}; ${star}; ` + (others.length ? `other figures changed: ${others.join('; ')}; ` : '') +
+          `${withNumbers(r.buildability, format)}; ${star}; ` + (others.length ? `other figures changed: ${others.join('; ')}; ` : '') +
           `${r.evaluations} designs in ${format(r.seconds)} s. Undo brings the previous design back.`);
       }
     });
