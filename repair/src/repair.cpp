@@ -258,9 +258,12 @@ RepairResult repair_varying(const json& preset, const RepairOptions& options) {
         // Two levels: a start that frees this collision may meet the next one,
         // whose hints are followed in turn (at most 12 searches).
         std::vector<std::vector<double>> starts = collision_hint_starts(variables, x);
+        // A third of the evaluations each: a hint that works frees the collision
+        // quickly, and twelve full searches would cost more than the rest of stage 1.
         std::size_t level_end = starts.size(), tried = 0;
+        const std::size_t hint_evaluations = std::max<std::size_t>(1, options.max_evaluations / 3);
         for (std::size_t k = 0; k < starts.size() && tried < 12 && time_left() > 0.0; ++k, ++tried) {
-          free = feasible_search(variables, problem, starts[k], options, time_left(), options.max_evaluations);
+          free = feasible_search(variables, problem, starts[k], options, time_left(), hint_evaluations);
           if (total_violation(problem, free) == 0.0) break;
           if (k < level_end) {
             for (std::vector<double>& y : collision_hint_starts(variables, free)) starts.push_back(std::move(y));
