@@ -321,6 +321,24 @@ TEST_CASE("a bistable design: two minima and the barrier between them", "[mechan
   }
 }
 
+TEST_CASE("the energy landscape at rest a hair inside a flexion limit: the rest state its minimum, no step past the limit", "[mechanics]") {
+  // t* of this fixture is 1.1e-8 above t_lambda, less than the step (1e-6 of the
+  // interval) the equilibria take beside a sample: taken whole, it left the interval.
+  const Design design = load_design(std::filesystem::path(test::data) / "partly-buildable.json");
+  const double t_lambda = design.assembly.flexion_interval().lower.t;
+  REQUIRE(design.assembly.t_star() - t_lambda > 0.0);
+  REQUIRE(design.assembly.t_star() - t_lambda < 1e-6 * (design.assembly.flexion_interval().upper.t - t_lambda));
+  EnergyOptions o;
+  o.rest_t = design.assembly.t_star();
+  o.samples = 51;
+  o.stiffness.panels = PanelModel::n4b5;
+  const EnergyLandscape e = energy_landscape(design, o);
+  REQUIRE(e.equilibria.size() >= 1);
+  CHECK(e.equilibria.front().rest);
+  CHECK(e.equilibria.front().minimum);
+  CHECK(e.equilibria.front().energy == Approx(0.0).margin(1e-20));
+}
+
 TEST_CASE("the energy landscape on two threads (halves of the samples) equals one walk, bit for bit", "[mechanics]") {
   // The rest state near either end (one side nearly all the samples: the far part
   // of the longer side starts afresh on the second thread and is joined), on every

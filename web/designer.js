@@ -39,7 +39,7 @@ import { createSurface } from './designer/surface.js';
 import { createTargets } from './designer/targets.js';
 import { createThickness } from './designer/thickness.js';
 import { createEnergy } from './designer/energy.js';
-import { $ } from './designer/util.js';
+import { $, refusal } from './designer/util.js';
 
 // --- the stage (before the core loads) ---------------------------------------
 // No MSAA: it costs more than the whole motion update in a software-rendered browser.
@@ -226,7 +226,7 @@ const initial = await files.initialPreset();
 state.loadedName = initial.preset.name ?? null;
 state.fileName = initial.file ?? null;
 if (!apply(initial.preset, { record: false })) {
-  $('message').textContent = `the preset is refused: ${state.failure.field}: ${state.failure.message}`;
+  $('message').textContent = `the preset is refused: ${refusal(state.failure)}`;
 }
 if (state.info) {
   // Start at t*, where the handles (the input) lie on the surface.

@@ -250,9 +250,9 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     Point p{points[i].t, 0.0, std::nullopt, {}};
     fold.evaluate(p.t, fold.rest_angles(), p.angles, scratch);
     const double turn = 2.0 * std::numbers::pi;
-    std::vector<double> near(p.angles.size());
-    for (std::size_t h = 0; h < near.size(); ++h) near[h] = scratch.theta[h] + turn * points[i].turns[h];
-    const FoldEnergy::Value v = fold.evaluate(p.t, near, p.angles, scratch);
+    std::vector<double> turned(p.angles.size());
+    for (std::size_t h = 0; h < turned.size(); ++h) turned[h] = scratch.theta[h] + turn * points[i].turns[h];
+    const FoldEnergy::Value v = fold.evaluate(p.t, turned, p.angles, scratch);
     p.energy = v.energy;
     p.rate = v.rate;
     return p;
@@ -265,10 +265,16 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   // interval away (closer, rounding in the positions, about 1e-15 of the model
   // size and more where the motion is ill-conditioned, can outweigh the rate).
   const double step = 1e-6 * (hi - lo);
+  // From t a step towards `towards`, never past half the way (a rest state a
+  // hair inside a flexion limit has its neighbouring sample closer than a step).
+  auto beside = [&](double t, double towards) {
+    const double by = std::min(step, 0.5 * std::abs(towards - t));
+    return towards > t ? t + by : t - by;
+  };
   // The sign of dE/dt at sample i as seen from the pair's other end (beside it when needed).
   auto sign_beside = [&](std::size_t i, double towards) -> std::optional<double> {
     if (i != rest && points[i].rate) return points[i].rate;
-    return carried(fold, i == rest ? at_rest : restore(i), points[i].t + (towards > points[i].t ? step : -step), scratch).rate;
+    return carried(fold, i == rest ? at_rest : restore(i), beside(points[i].t, towards), scratch).rate;
   };
   for (std::size_t i = 0; i + 1 < points.size(); ++i) {
     if (i == rest) out.equilibria.push_back({options.rest_t, true, points[i].energy, true});
@@ -288,7 +294,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     // A change of sign: bisect from the left end, its angles restored.
     Point a_side = i == rest ? at_rest : restore(i);
     if (i == rest || !points[i].rate) {
-      a_side = carried(fold, a_side, a_side.t + (points[i + 1].t > a_side.t ? step : -step), scratch);
+      a_side = carried(fold, a_side, beside(a_side.t, points[i + 1].t), scratch);
     }
     const bool falling_left = *left_rate < 0.0;
     double b = points[i + 1].t;

@@ -12,6 +12,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { canvasColours, helixPreset, launch, serve } from './browser.mjs';
 import { checkUnderHands } from './designer_hands.mjs';
+import { decimals4, withNumbers } from '../../web/text.js';
 
 const [phedra, preset, screenshot] = process.argv.slice(2);
 const scratch = mkdtempSync(path.join(tmpdir(), 'phedra-designer-'));
@@ -43,6 +44,27 @@ try {
     return api(() => window.phedraDesigner.buildability());
   };
 
+  /// One number format a page (issue 39): every decimal number the page shows (its texts,
+  /// the titles on hover; not what a user typed in the inputs, not the JSON box, not the
+  /// shipped presets' own descriptions) in 4 decimals, or 3 significant digits in exponent form.
+  const offFormat = () => page.evaluate(() => {
+    const decimal = /(?<![\w.])-?\d+\.\d+(?:e[-+]?\d+)?(?![\w.]|\s*%)/g;
+    const out = [];
+    const look = (text, where) => {
+      for (const n of String(text).match(decimal) ?? []) {
+        if (!/^-?\d+\.\d{4}$/.test(n) && !/^-?\d\.\d{2}e[-+]\d+$/.test(n)) out.push(`${where}: ${n} in "${String(text).slice(0, 120)}"`);
+      }
+    };
+    const walk = (e) => {
+      if (e.nodeType === 3) { look(e.textContent, e.parentElement.closest('[id]')?.id ?? ''); return; }
+      if (e.nodeType !== 1 || ['SCRIPT', 'STYLE', 'TEXTAREA'].includes(e.tagName) || e.id === 'presets') return;
+      if (e.title) look(e.title, `${e.id || e.tagName} title`);
+      for (const c of e.childNodes) walk(c);
+    };
+    walk(document.body);
+    return out;
+  });
+  const inFormat = async (when) => { const off = await offFormat(); check(off.length === 0, `${when}, numbers not in the page's format: ${off.slice(0, 5).join('; ')}`); };
   // Rendered: the canvas holds more than the background.
   // (on a loaded 2-core machine the software renderer may take a while for the first frames)
   let colours = await canvasColours(page);
@@ -216,6 +238,7 @@ try {
     const text = await page.$eval('#energy-status', (e) => e.textContent);
     check(text.includes('fold springs at rest at t =') && text.includes('one minimum'), `the Energy box says: "${text}"`);
     if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-energy.png') });
+    await inFormat('the default preset after Optimize, its plates and its energy');
     await page.click('#energy summary');
   }
   const loadFile = async (file) => {
@@ -259,6 +282,10 @@ try {
     const hinge = JSON.parse(execFileSync(phedra, ['intersections', file, '--json'], { encoding: 'utf8' })).upper.panels.map((p) => p.face);
     check(hinge.every((f) => orange.includes(f)), `orange panels above the buildable part: ${orange}, the hinge that ends it: ${hinge}`);
     if (screenshot) await page.screenshot({ path: screenshot.replace(/\.png$/, '-colliding.png') });
+    // Its t* lies 1.1e-8 inside t_lambda: the energy at rest there is computed, not refused.
+    check(!(await page.$eval('#energy-status', (e) => e.textContent)).includes('outside the flexion interval'),
+      `energy at rest at t* a hair inside t_lambda: "${await page.$eval('#energy-status', (e) => e.textContent)}"`);
+    await inFormat('a partly buildable design');
     await api((t) => window.phedraDesigner.setT(t), 0.5 * (b.interval[0] + b.interval[1]));
     await page.waitForTimeout(400);
     check((await api(() => window.phedraDesigner.collidingPanels())).length === 0, 'orange panels inside the buildable part');
@@ -290,6 +317,7 @@ try {
       null, { timeout: 60000 });
     const result = await page.$eval('#repair-result', (e) => e.textContent);
     check(result.startsWith('repaired: '), `repair result: "${result}"`);
+    await inFormat('after a repair');
     const after = await settled();
     check(after.buildable && (await status()).startsWith('buildable over the whole flexion interval'), `after repair: "${await status()}"`);
     check((await api(() => window.phedraDesigner.invalidPanels())).length === 0, 'red panels after the repair');
@@ -498,7 +526,7 @@ try {
     try { execFileSync(phedra, ['info', file], { stdio: ['ignore', 'pipe', 'pipe'] }); return ''; } catch (e) { return String(e.stderr); }
   })();
   check(message.startsWith('directions[2]: '), `the broken direction gave "${message}"`);
-  check(cliMessage.includes(message), `page "${message}" vs CLI "${cliMessage.trim()}"`);
+  check(withNumbers(cliMessage, decimals4).includes(message), `page "${message}" vs CLI "${cliMessage.trim()}"`);
   check(label === message, `no label next to the handle ("${label}")`);
   const still = await api(() => window.phedraDesigner.positions());
   check(still.length === shown.length && still.every((v, i) => v === shown[i]), 'a refused edit changed the shown design');

@@ -6,7 +6,7 @@
 // defines it is held fixed), unless no buildable design keeps it; then it says so.
 import { pointerOf, setAt, tStarField } from './edits.js';
 import { withNumbers } from '../text.js';
-import { $, format } from './util.js';
+import { $, format, refusal } from './util.js';
 
 // The nearest buildable design is found by the same core as `phedra repair`
 // (NLopt compiled to WebAssembly). The search runs on this thread: the status
@@ -90,7 +90,7 @@ export function createBuildability({ state, designer, panel, surface, apply, onF
   function finish(r, freed) {
     $('repair').disabled = false;
     if (!r.ok) {
-      panel.showRepair(`repair refused: ${r.field ? `${r.field}: ` : ''}${r.message}`);
+      panel.showRepair(`repair refused: ${refusal(r)}`);
     } else if (r.already_buildable) {
       panel.showRepair('already buildable over the whole flexion interval: nothing to repair');
     } else if (!r.found) {

@@ -4,7 +4,7 @@
 // against t with the rest state, minima and maxima marked, whether the design is
 // bistable and its barrier, and a cursor at the slider's t. An edit computes it
 // again for the new design when the box shows it.
-import { $, format } from './util.js';
+import { $, format, refusal } from './util.js';
 import { energyPlot } from '../plot.js';
 
 export function createEnergy({ state, designer }) {
@@ -32,7 +32,7 @@ export function createEnergy({ state, designer }) {
     if (!r.ok) {
       result = null;
       plot.innerHTML = '';
-      status.textContent = `${r.field ? `${r.field}: ` : ''}${r.message}`;
+      status.textContent = refusal(r);
       return;
     }
     result = r;

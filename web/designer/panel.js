@@ -7,7 +7,7 @@
 // in #status-box, of a fixed height: the buttons never move.
 import { makerHint, pageTitle, statusSummary, withArticle, withNumbers } from '../text.js';
 import { fieldsInHint, modeOf } from './edits.js';
-import { $, format } from './util.js';
+import { $, format, refusal } from './util.js';
 
 /// `locate(field)`: where on the page the handle of a preset field is ([x, y]) or null;
 /// `onSign(k, sign)`: the user set sign k to `sign`; `onCause({panel, field})`: the
@@ -59,7 +59,7 @@ export function createPanel({ state, locate, onSign, onCause = () => {} }) {
       return;
     }
     message.classList.remove('buildable', 'unbuildable');
-    const text = failure.field ? `${failure.field}: ${failure.message}` : failure.message;
+    const text = refusal(failure);
     message.textContent = text;
     message.classList.add('error');
     const at = locate(failure.field);

@@ -20,10 +20,13 @@ const sameSet = (a, b) => a.size === b.size && [...a].every((x) => b.has(x));
 /// `state`: the DesignState; `designer`: the core's Designer; `showT(t)`: says
 /// the t the positions are at; `screenOf(point)`: where a point is on the page.
 export function createSurface({ scene, state, designer, requestRender, showT, screenOf = null, onPositions = null }) {
-  const surface = new THREE.Mesh(new THREE.BufferGeometry(), ['simple', 'invalid', 'colliding'].map((k) =>
-    // Pushed back a little in depth, so that the panel edges and fold lines drawn on them do not flicker.
+  const surface = new THREE.Mesh(new THREE.BufferGeometry(), ['simple', 'invalid', 'colliding'].map((k, rank) =>
+    // Pushed back a little in depth, so that the panel edges and fold lines drawn on them do not flicker;
+    // colliding panels least, simple ones most: where panels lie on one another (a hinge folded
+    // shut, a bow-tie's two triangles, panels through each other) the one in trouble is drawn
+    // whole on top, not in stripes with its neighbour.
     new THREE.MeshLambertMaterial({ color: validityColours[k], side: THREE.DoubleSide, flatShading: true,
-                                    polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 1 })));
+                                    polygonOffset: true, polygonOffsetFactor: 1, polygonOffsetUnits: 3 - rank })));
   // Without depth writes: the fold lines drawn after them cover them instead of fighting them pixel by pixel.
   const edges = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0x20303f, depthWrite: false }));
   scene.add(surface, edges);

@@ -4,7 +4,7 @@
 // the same core as the command (NLopt in WebAssembly, on this thread: the status
 // says so first). The result replaces the design; Undo brings the previous back.
 import { withNumbers } from '../text.js';
-import { $, format } from './util.js';
+import { $, format, refusal } from './util.js';
 
 const optimizeSeconds = 10;
 
@@ -143,7 +143,7 @@ export function createTargets({ state, designer, apply }) {
       const r = designer.optimize(JSON.stringify({ targets: wanted, max_seconds: optimizeSeconds }));
       updateButton();
       if (!r.ok) {
-        show(`optimize refused: ${r.field ? `${r.field}: ` : ''}${r.message}`);
+        show(`optimize refused: ${refusal(r)}`);
         return;
       }
       const outcome = Array.from(r.targets).map((t) =>

@@ -5,7 +5,8 @@
 // the zero-thickness panels. An edit drops the plates (they belong to the design
 // they were cut for); they follow when the edit settles.
 import * as THREE from 'three';
-import { $, format } from './util.js';
+import { withNumbers } from '../text.js';
+import { $, format, refusal } from './util.js';
 
 /// `designer`: the core's Designer; `surface`: the panels (hidden while plates show).
 /// `onChange`: the plates were shown, hidden or moved to another t (the status
@@ -71,11 +72,11 @@ export function createThickness({ scene, state, designer, surface, requestRender
         // The core says "a plate T thick does not fit on panel K (strip i, column j): WHY (a thinner plate, or a wider panel)".
         const m = /does not fit on panel (\d+)( \(([^)]*)\))?: (.*?)( \(a thinner plate, or a wider panel\))?$/.exec(r.message);
         if (m) surface.highlightPanel(Number(m[1]));
-        const what = m ? `on panel ${m[1]} (${m[3] ? `${m[3]}, ` : ''}highlighted): ${m[4]}` : `: ${r.message}`;
+        const what = m ? `on panel ${m[1]} (${m[3] ? `${m[3]}, ` : ''}highlighted): ${withNumbers(m[4], format)}` : `: ${withNumbers(r.message, format)}`;
         say(`plates ${format(thickness)} thick do not fit ${what}.` +
             (r.thickest ? ` The thickest plates that fit at t* on this side are ${format(r.thickest)} thick: type that or less above.` : ''));
       } else {
-        say(`${r.field ? `${r.field}: ` : ''}${r.message}`);
+        say(refusal(r));
       }
       return hide();
     }
