@@ -318,3 +318,29 @@ TEST_CASE("repair --objective fields: fewer fields changed than the nearest desi
   CHECK(fewer >= 1);
 #endif
 }
+
+TEST_CASE("repair: a design buildable over part of the interval is never a result; the closest says how much", "[repair]") {
+  // The heights alone, one start, no widest-part search: the fixture stays buildable
+  // over 57 % of its interval (a hinge folds through above t = 0.3133), short of the whole.
+  const json preset = read_json(data + "/partly-buildable.json");
+  RepairOptions options;
+  options.vary = {VariableGroup::apex_heights};
+  options.escalate = false;
+  options.search_widest = false;
+  options.restarts = 0;
+  options.retries = 0;
+  options.motion_evaluations = 20;
+  options.max_seconds = 1e9;
+  const RepairResult r = repair(preset, options);
+  REQUIRE_FALSE(r.found);
+  CHECK(r.preset.is_null());
+  CHECK(r.changes.empty());
+  CHECK(r.closest_fraction > 0.5);
+  CHECK(r.closest_fraction < 1.0);
+  REQUIRE(r.closest_preset.is_object());
+  // What the closest claims, the report of its own says.
+  const BuildabilityReport check = assess_buildability(design_from_json(r.closest_preset));
+  CHECK_FALSE(check.buildable());
+  CHECK(buildable_fraction(check) >= r.closest_fraction - 1e-9);
+  CHECK_THAT(r.closest, Catch::Matchers::Contains("buildable over"));
+}
