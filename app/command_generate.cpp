@@ -18,6 +18,7 @@
 #include "phedra/motion_document.h"
 
 #include <algorithm>
+#include <limits>
 #include <filesystem>
 #include <memory>
 #include <ostream>
@@ -182,21 +183,43 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
       names.push_back(pins.names[k]);
     }
   }
+  // With --thickness-mm the solids are in millimetres, on the cut sheets' scale (a 3MF
+  // says millimetre, and slicers read STL and OBJ so); with --thickness, in model units.
+  const std::optional<double> mm = millimetres_per_unit(design, o.thickness);
+  const double s = mm ? *mm : 1.0;
+  const std::string unit = mm ? " mm" : "";
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (Solid& solid : solids) {
+    for (Vec3& v : solid.vertices) {
+      v *= s;
+      low = low.cwiseMin(v);
+      high = high.cwiseMax(v);
+    }
+  }
+  const Vec3 size = high - low;
   const std::string ext = std::filesystem::path(o.output).extension().string();
-  const std::string comment = "plates " + format_human(report.thickness) + " thick (" + to_string(report.side) +
-                              " side) at t = " + format_human(t) + "; phedra buildability: " + buildability.summary();
+  const std::string comment = "plates " + format_human(s * report.thickness) + unit + " thick (" + to_string(report.side) +
+                              " side) at t = " + format_human(t) +
+                              (mm ? ", millimetres (" + format_human(s) + " mm a model unit)" : ", model units") +
+                              "; phedra buildability: " + buildability.summary();
   emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
-  context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(report.thickness)
+  context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(s * report.thickness) << unit
               << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
-              << format_human(t) << ", volume " << format_human(volume) << " (thickness x panel area "
-              << format_human(report.thickness * report.panel_area) << ")\n";
+              << format_human(t) << ", volume " << format_human(s * s * s * volume) << (mm ? " mm^3" : "")
+              << " (thickness x panel area " << format_human(s * s * s * report.thickness * report.panel_area) << ")\n";
+  context.out << (mm ? "in millimetres, " + format_human(s) + " mm a model unit (the cut sheets' scale)"
+                     : std::string("in model units (a slicer reads them as millimetres: --thickness-mm for a size in mm)"))
+              << ": overall " << format_human(size.x()) << " x " << format_human(size.y()) << " x "
+              << format_human(size.z()) << unit << "\n";
   if (o.thickness.hinge == "pin") {
     const PinSizes sizes(report.thickness);
     context.out << "pin hinges: " << pins.hinges << " hinges, " << pins.knuckles << " knuckles (radius "
-                << format_human(sizes.knuckle_radius) << ", each a tube joined to a leaf to glue onto its plate's panel "
-                << "face), " << pins.pins << " pins (radius " << format_human(sizes.pin_radius) << ", holes "
-                << format_human(sizes.hole_radius) << "), volume " << format_human(parts_volume) << "; plates cut back by "
-                << format_human(0.5 * report.hinge_gap) << " from each hinge line\n";
+                << format_human(s * sizes.knuckle_radius) << unit
+                << ", each a tube joined to a leaf to glue onto its plate's panel face), " << pins.pins
+                << " pins (radius " << format_human(s * sizes.pin_radius) << unit << ", holes "
+                << format_human(s * sizes.hole_radius) << unit << "), volume " << format_human(s * s * s * parts_volume)
+                << (mm ? " mm^3" : "") << "; plates cut back by " << format_human(s * 0.5 * report.hinge_gap) << unit
+                << " from each hinge line\n";
   }
   if (report.at_t_star) {
     context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << format_human(report.thickness)

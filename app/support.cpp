@@ -34,7 +34,7 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
   CLI::Option* model = command->add_option("--thickness", o.model_units, what + " (model units)")->check(positive_number());
   CLI::Option* mm = command->add_option("--thickness-mm", o.mm,
                                         "The same in millimetres on the cut sheets' scale (--scale, or --model-size as "
-                                        "phedra outlines)")
+                                        "phedra outlines); generate's solids are then in millimetres too")
                         ->check(positive_number())
                         ->excludes(model);
   CLI::Option* scale = command->add_option("--scale", o.scale, "With --thickness-mm: millimetres a model unit")
@@ -66,11 +66,16 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
       ->capture_default_str();
 }
 
+std::optional<double> millimetres_per_unit(const Design& design, const ThicknessOptions& o) {
+  if (!o.mm) return std::nullopt;
+  return o.scale ? *o.scale : o.model_mm / bounded_model_size(design);
+}
+
 std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& o) {
   if (!o.model_units && !o.mm) return std::nullopt;
   ThickOptions out;
   out.side = plate_side_from_string(o.side);
-  const double unit = o.model_units ? 1.0 : 1.0 / (o.scale ? *o.scale : o.model_mm / bounded_model_size(design));
+  const double unit = o.model_units ? 1.0 : 1.0 / *millimetres_per_unit(design, o);
   out.thickness = (o.model_units ? *o.model_units : *o.mm) * unit;
   if (const double resolved = 1e-6 * design.assembly.model_size(); o.mm && out.thickness < resolved) {
     // In the user's unit: the plates' own check says it in model units, for --thickness.

@@ -32,6 +32,9 @@ struct ThicknessOptions {
 void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);
 /// The plate options asked for (none without --thickness or --thickness-mm).
 std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& options);
+/// Millimetres a model unit with --thickness-mm (--scale, or the model's size
+/// made --model-size mm: the cut sheets' scale); none with --thickness.
+std::optional<double> millimetres_per_unit(const Design& design, const ThicknessOptions& options);
 
 /// Loads and builds the design of a preset file; records the path in the context
 /// so that errors name it.

@@ -319,7 +319,7 @@ TEST_CASE("repair --objective fields: fewer fields changed than the nearest desi
 #endif
 }
 
-TEST_CASE("repair: a design buildable over part of the interval is never a result; the closest says how much", "[repair]") {
+TEST_CASE("repair: a design buildable over part of the interval is never a result, and the closest says how much", "[repair]") {
   // The heights alone, one start, no widest-part search: the fixture stays buildable
   // over 57 % of its interval (a hinge folds through above t = 0.3133), short of the whole.
   const json preset = read_json(data + "/partly-buildable.json");
