@@ -206,7 +206,8 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
   context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(s * report.thickness) << unit
               << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
               << format_human(t) << ", volume " << format_human(s * s * s * volume) << (mm ? " mm^3" : "")
-              << " (thickness x panel area " << format_human(s * s * s * report.thickness * report.panel_area) << ")\n";
+              << " (thickness x panel area " << format_human(s * s * s * report.thickness * report.panel_area)
+              << (mm ? " mm^3" : "") << ")\n";
   context.out << (mm ? "in millimetres, " + format_human(s) + " mm a model unit (the cut sheets' scale)"
                      : std::string("in model units (a slicer reads them as millimetres: --thickness-mm for a size in mm)"))
               << ": overall " << format_human(size.x()) << " x " << format_human(size.y()) << " x "

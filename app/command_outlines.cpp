@@ -3,6 +3,7 @@
 #include "buildability_warning.h"
 #include "number_checks.h"
 #include "commands.h"
+#include "phedra/number_format.h"
 #include "phedra/cut_sheets.h"
 #include "phedra/errors.h"
 #include "support.h"
@@ -27,11 +28,8 @@ struct OutlinesCommandOptions {
   CutSheetOptions sheets;
 };
 
-std::string six(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", x);
-  return buffer;
-}
+/// The summary's numbers: 6 significant digits, or round-trip ones with --full-precision.
+std::string six(double x) { return format_human(x); }
 
 /// out.svg -> out-3.svg (one file per page when there are several).
 std::string numbered(const std::string& path, std::size_t page, std::size_t pages) {

@@ -12,6 +12,7 @@
 #include "phedra/solid_export.h"
 #include "phedra/thick_plates.h"
 #include "phedra/hinge_pins.h"
+#include "phedra/number_format.h"
 #include "phedra/triangle_overlap.h"
 #include "support/random_input.h"
 #include "support/test_files.h"
@@ -468,6 +469,55 @@ TEST_CASE("thick plates: generate writes STL, 3MF and OBJ solids", "[thick][cli]
   REQUIRE(cli::run({"generate", tube, "--thickness", "0.08", "-o", (dir.path / "t.obj").string()}, out, err) == 0);
   const std::string obj = read_file(dir.path / "t.obj");
   CHECK_THAT(obj, Contains("o plate_39"));
+}
+
+TEST_CASE("thick plates: --thickness-mm solids in millimetres, on the cut sheets' scale", "[thick][cli]") {
+  test::TempDir dir("thick");
+  const std::string tube = presets + "/parallelogram-tube.json";
+  // The scale the sheets use, and the one generate says.
+  const auto number_after = [](const std::string& text, const std::string& before) {
+    const std::size_t at = text.find(before);
+    REQUIRE(at != std::string::npos);
+    return std::stod(text.substr(at + before.size()));
+  };
+  const test::Run sheets = test::phedra_cli({"outlines", tube, "--thickness-mm", "3", "--full-precision", "-o", (dir.path / "s.svg").string()});
+  REQUIRE(sheets.code == 0);
+  const double scale = number_after(sheets.out, "scale ");
+  const test::Run mm = test::phedra_cli({"generate", tube, "--thickness-mm", "3", "--full-precision", "-o", (dir.path / "mm.stl").string()});
+  REQUIRE(mm.code == 0);
+  CHECK(number_after(mm.out, "in millimetres, ") == Approx(scale).epsilon(1e-12));
+  // The same plates in model units, T = 3 mm / scale: every vertex scaled by it.
+  const test::Run units = test::phedra_cli({"generate", tube, "--thickness", format_number(3.0 / scale), "-o", (dir.path / "mu.stl").string()});
+  REQUIRE(units.code == 0);
+  CHECK_THAT(units.out, Contains("in model units (a slicer reads them as millimetres"));
+  const auto floats = [](const std::string& stl) {
+    std::vector<float> out;
+    std::uint32_t count = 0;
+    std::memcpy(&count, stl.data() + 80, 4);
+    for (std::size_t k = 0; k < count; ++k) {
+      for (std::size_t c = 3; c < 12; ++c) {
+        float x = 0.0f;
+        std::memcpy(&x, stl.data() + 84 + 50 * k + 4 * c, 4);
+        out.push_back(x);
+      }
+    }
+    return out;
+  };
+  const std::vector<float> a = floats(read_file(dir.path / "mm.stl")), b = floats(read_file(dir.path / "mu.stl"));
+  REQUIRE(a.size() == b.size());
+  REQUIRE(a.size() > 1000);
+  double worst = 0.0, low = 1e300, high = -1e300;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    worst = std::max(worst, std::abs(a[k] - scale * b[k]));
+    if (k % 3 == 0) { low = std::min(low, double(a[k])); high = std::max(high, double(a[k])); }
+  }
+  CHECK(worst < 1e-4);  // mm: float rounding of coordinates of about 100 mm
+  // The overall size said is the file's (x here), to 0.01 mm.
+  CHECK(number_after(mm.out, "overall ") == Approx(high - low).margin(0.01));
+  // A 3MF in millimetres says so; the volume is said in mm^3.
+  REQUIRE(test::phedra_cli({"generate", tube, "--thickness-mm", "3", "-o", (dir.path / "mm.3mf").string()}).code == 0);
+  CHECK_THAT(read_file(dir.path / "mm.3mf"), Contains("unit=\"millimeter\""));
+  CHECK_THAT(mm.out, Contains(" mm^3"));
 }
 
 TEST_CASE("thick plates: sample --thickness adds the plates at every t, on the panels", "[thick][cli]") {
