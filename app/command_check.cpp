@@ -74,6 +74,7 @@ void add_check_command(CLI::App& app, Context& context) {
       thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
+    const std::optional<double> mm = millimetres_per_unit(loaded.design, options->thickness);
     // The rigid-panel model's mobility at t*: one internal mechanism, the motion
     // (informative; a design with a degenerate panel has no model: said so).
     std::optional<Mobility> mobile;
@@ -92,6 +93,11 @@ void add_check_command(CLI::App& app, Context& context) {
       if (thick) {
         j["thick"] = thick->to_json();
         j["thick_interval"] = j["thick"]["thick_interval"];
+        if (mm) {  // --thickness-mm: the plates' figures in millimetres too
+          j["thick"]["millimetres_per_unit"] = *mm;
+          j["thick"]["thickness_mm"] = *mm * thick->thickness;
+          j["thick"]["thickest_at_t_star_mm"] = thick->thickest ? nlohmann::json(*mm * *thick->thickest) : nlohmann::json(nullptr);
+        }
       }
       context.out << j.dump(2) << '\n';
     } else {
@@ -116,6 +122,12 @@ void add_check_command(CLI::App& app, Context& context) {
       if (thick) {
         if (!thick_fits) context.out << "FAIL: the plates " << format_human(thick->thickness) << " thick collide at t*\n";
         context.out << *thick;
+        if (mm) {
+          context.out << "  in millimetres (" << format_human(*mm) << " mm a model unit): plates " << format_human(*mm * thick->thickness)
+                      << " mm thick";
+          if (thick->thickest) context.out << ", the thickest that fit at t* " << format_human(*mm * *thick->thickest) << " mm";
+          context.out << '\n';
+        }
       }
     }
     context.exit_code = report.passed() && buildable && thick_fits ? 0 : static_cast<int>(ExitCode::check_failed);

@@ -83,9 +83,12 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
                                               "resolves (1e-6 of its size, " + format_human(resolved / unit) +
                                               " mm on this scale): such plates are the panels themselves");
   }
-  out.hinge_gap = o.hinge_gap * unit;
-  if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap = 0.25 * out.thickness;
-  if (o.hinge == "pin") out.hinge_gap = std::max(out.hinge_gap, pin_hinge_gap(out.thickness));
+  // The gap follows the plates when a pin hinge or a default gap sets it (and the
+  // thickest plates are searched so: each thickness with its own gap).
+  out.hinge_gap_fixed = o.hinge_gap * unit;
+  if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap_per_thickness = 0.25;
+  if (o.hinge == "pin") out.hinge_gap_per_thickness = pin_hinge_gap(1.0);  // linear in the thickness
+  out.hinge_gap = out.hinge_gap_per_thickness > 0.0 ? out.hinge_gap_at(out.thickness) : out.hinge_gap_fixed;
   return out;
 }
 

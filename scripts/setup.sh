@@ -9,7 +9,8 @@
 # pytest runs its tests and matplotlib draws the example's plot; Spectra, CHOLMOD (SuiteSparse) and
 # serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS, LAPACK its dense SVD;
 # SciPy (quasi-random sampling), Dask's distributed, Zarr and xarray run and store
-# the design-space atlases of python/phedra/atlas), then the npm packages of web/
+# the design-space atlases of python/phedra/atlas; dxflib writes the DXF cut sheets
+# (R2000, closed polylines) and ezdxf audits them in the tests), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -24,6 +25,7 @@ packages=(
   blender python3-numpy admesh
   python3-dev python3-pybind11 python3-pytest python3-matplotlib
   python3-scipy python3-distributed python3-zarr python3-xarray
+  libdxflib-dev python3-ezdxf
 )
 
 missing=()

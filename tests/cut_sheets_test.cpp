@@ -4,6 +4,7 @@
 // overlapping or off the page; PDF, SVG, PNG and DXF; one test per message.
 
 #include "support/test_files.h"
+#include "phedra/cut_loops.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/cut_sheets.h"
 #include "phedra/fold_export.h"
@@ -177,6 +178,13 @@ void check_sheets(const Design& design, const CutSheets& s) {
   // Per page: nothing overlaps (panels, tabs, labels), everything inside the page's content area.
   for (std::size_t k = 0; k < s.pages.size(); ++k) {
     CAPTURE(k);
+    // The cutter's reading (cut_loops.h, the DXF's CUT layer): each piece one closed loop, nothing open.
+    const CutLoops loops = cut_loops(s.pages[k].lines);
+    CHECK(loops.open.empty());
+    CHECK(loops.closed.size() == s.pages[k].pieces.size());
+    for (std::size_t i = 1; i < loops.closed.size(); ++i) {
+      CHECK(std::abs(signed_area2(loops.closed[i - 1])) <= std::abs(signed_area2(loops.closed[i])));
+    }
     std::vector<Polygon2> shapes;  // cuttable panels and tabs
     std::vector<Box2> labels;
     for (std::size_t pi : s.pages[k].pieces) {

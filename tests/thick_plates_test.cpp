@@ -406,6 +406,42 @@ TEST_CASE("thick plates: the thickest plates that fit at t*", "[thick]") {
   }
 }
 
+TEST_CASE("thick plates: the thickest that fit, the same whatever thickness check ran at, with every hinge mode and unit", "[thick][cli]") {
+  // A pin hinge's gap grows with the plates (1.16 T), a default gap too (T / 4):
+  // the search gives each thickness its own. At the figure the plates fit, 5 % over not.
+  struct Case {
+    std::string preset, hinge;
+  };
+  const std::vector<Case> cases = sanitized ? std::vector<Case>{{"default", "pin"}}
+                                            : std::vector<Case>{{"default", "none"}, {"default", "pin"}, {"parallelogram-tube", "gap"}};
+  for (const Case& c : cases) {
+    CAPTURE(c.preset, c.hinge);
+    const std::string path = presets + "/" + c.preset + ".json";
+    auto check = [&](const std::vector<std::string>& extra) {
+      std::vector<std::string> args{"check", path, "--hinge", c.hinge, "--json"};
+      args.insert(args.end(), extra.begin(), extra.end());
+      return test::phedra_cli(args);
+    };
+    const test::Run thin = check({"--thickness", "0.01"}), thick = check({"--thickness", "0.04"});
+    REQUIRE(thin.code == 0);
+    REQUIRE(thick.code == 0);
+    const nlohmann::json a = nlohmann::json::parse(thin.out)["thick"], b = nlohmann::json::parse(thick.out)["thick"];
+    const double thickest = a["thickest_at_t_star"].get<double>();
+    REQUIRE(thickest > 0.0);
+    CHECK(b["thickest_at_t_star"].get<double>() == thickest);
+    CHECK(b["thickest_side"] == a["thickest_side"]);
+    const std::string side = a["thickest_side"].get<std::string>();
+    CHECK(check({"--thickness", format_number(thickest), "--plate-side", side}).code == 0);
+    const test::Run over = check({"--thickness", format_number(1.05 * thickest), "--plate-side", side});
+    CHECK(over.code != 0);
+    CHECK(over.code != 4);
+    // In millimetres with --thickness-mm: the same figure on the sheets' scale.
+    const nlohmann::json mm = nlohmann::json::parse(check({"--thickness-mm", "1"}).out)["thick"];
+    CHECK(mm["thickest_at_t_star"].get<double>() == thickest);
+    CHECK(mm["thickest_at_t_star_mm"].get<double>() == Approx(thickest * mm["millimetres_per_unit"].get<double>()).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("thick plates: check --thickness reports the thick interval, and plates colliding at t* fail, named", "[thick][cli]") {
   std::ostringstream out, err;
   REQUIRE(cli::run({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--json"}, out, err) == 0);

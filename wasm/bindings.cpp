@@ -663,7 +663,10 @@ class Designer {
         probe.find_thickest = true;
         try {
           const ThickReport fits = check_thickness(*design_, buildability, probe);
-          if (fits.thickest) v.set("thickest", *fits.thickest);
+          if (fits.thickest) {
+            v.set("thickest", *fits.thickest);
+            v.set("thickest_side", to_string(fits.thickest_side));
+          }
         } catch (const Error&) {
         }
         return v;

@@ -107,15 +107,18 @@ bool fits_at_t_star(const Design& design, double thickness, PlateSide side, std:
 }
 
 /// The thickest plates that fit at t* (to 1 %), by bisection of the thickness's
-/// logarithm between 1e-4 and 0.5 of the model size; 0 when not even the thinnest fit.
-double thickest_at_t_star(const Design& design, PlateSide side, std::pair<double, double> bevel, double gap) {
+/// logarithm between 1e-4 and 0.5 of the model size, each with its own hinge gap
+/// (options.hinge_gap_at: a pin hinge's grows with the plates); 0 when not even
+/// the thinnest fit. Independent of the thickness the options were made for.
+double thickest_at_t_star(const Design& design, PlateSide side, std::pair<double, double> bevel, const ThickOptions& options) {
   const double size = design.assembly.model_size();
+  auto fits = [&](double t) { return fits_at_t_star(design, t, side, bevel, options.hinge_gap_at(t)); };
   double lo = 1e-4 * size, hi = 0.5 * size;
-  if (!fits_at_t_star(design, lo, side, bevel, gap)) return 0.0;
-  if (fits_at_t_star(design, hi, side, bevel, gap)) return hi;
+  if (!fits(lo)) return 0.0;
+  if (fits(hi)) return hi;
   while (hi / lo > 1.01) {
     const double mid = std::sqrt(lo * hi);
-    (fits_at_t_star(design, mid, side, bevel, gap) ? lo : hi) = mid;
+    (fits(mid) ? lo : hi) = mid;
   }
   return lo;
 }
@@ -158,18 +161,26 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
   ThickReport r = options.side != PlateSide::automatic ? check_side(design, thin, options, options.side, *free)
                                                         : better_side(design, thin, options, *free);
   if (options.find_thickest) {
-    r.thickest = thickest_at_t_star(design, r.side, {r.bevel_lower, r.bevel_upper}, options.hinge_gap);
+    r.thickest = thickest_at_t_star(design, r.side, {r.bevel_lower, r.bevel_upper}, options);
     if (options.side == PlateSide::automatic && r.at_t_star) {
       // Both sides collide at t*: the side that carries the thicker plates.
       const PlateSide other = r.side == PlateSide::front ? PlateSide::back : PlateSide::front;
       try {
         ThickReport o = check_side(design, thin, options, other, *free);
-        o.thickest = thickest_at_t_star(design, other, {o.bevel_lower, o.bevel_upper}, options.hinge_gap);
+        o.thickest = thickest_at_t_star(design, other, {o.bevel_lower, o.bevel_upper}, options);
         const bool tie = std::abs(*o.thickest - *r.thickest) <= 0.01 * std::max(*o.thickest, *r.thickest);
         if ((!tie && *o.thickest > *r.thickest) || (tie && o.volume > r.volume)) r = o;
       } catch (const InvalidInputError&) {
         // its plates do not fit: this side stays
       }
+    }
+    r.thickest_side = r.side;
+    if (options.side == PlateSide::automatic) {
+      // Either side may carry them: the thickest plates are the thicker side's,
+      // whichever side plates of this thickness chose (the figure does not depend on it).
+      const PlateSide other = r.side == PlateSide::front ? PlateSide::back : PlateSide::front;
+      const double there = thickest_at_t_star(design, other, {r.bevel_lower, r.bevel_upper}, options);
+      if (there > *r.thickest) r.thickest = there, r.thickest_side = other;
     }
   }
   return r;
@@ -212,6 +223,7 @@ nlohmann::json ThickReport::to_json() const {
                       {"panel_area", panel_area},
                       {"hinge_gap", hinge_gap},
                       {"thickest_at_t_star", thickest ? nlohmann::json(*thickest) : nlohmann::json(nullptr)},
+                      {"thickest_side", thickest ? nlohmann::json(to_string(thickest_side)) : nlohmann::json(nullptr)},
                       {"samples", samples},
                       {"at_t_star", limit_json(at_t_star, members > 1)},
                       {"lower", limit_json(lower, members > 1)},
@@ -228,8 +240,8 @@ std::ostream& operator<<(std::ostream& out, const ThickReport& r) {
   out << "  volume " << format_human(r.volume) << " (thickness x panel area " << format_human(r.thickness * r.panel_area)
       << ")\n";
   if (r.thickest) {
-    out << "  the thickest plates that fit at t* on this side: " << format_human(*r.thickest)
-        << (*r.thickest > 0.0 ? " (to 1 %)" : " (none: even 1e-4 of the model size collide)") << '\n';
+    out << "  the thickest plates that fit at t*" << (r.thickest_side == r.side ? " on this side" : " (on the " + to_string(r.thickest_side) + " side)")
+        << ": " << format_human(*r.thickest) << (*r.thickest > 0.0 ? " (to 1 %)" : " (none: even 1e-4 of the model size collide)") << '\n';
   }
   if (r.at_t_star) {
     out << "  at t* = " << format_human(r.t_star) << ": " << describe_limit(*r.at_t_star, several) << '\n';

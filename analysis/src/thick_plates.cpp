@@ -311,9 +311,9 @@ ThickPlates::ThickPlates(const Design& design, double thickness, PlateSide side,
         if (!((f[c] - f[e]).dot(along[e]) > 0.0) || !(area_vector(f).dot(normal) > 0.0)) {
           const bool gap = face == &bottom;
           throw InvalidInputError(gap ? "--hinge-gap" : "--thickness",
-                                  gap ? "a hinge gap of " + format_number(hinge_gap) + " leaves nothing of " +
+                                  gap ? "a hinge gap of " + format_human(hinge_gap) + " leaves nothing of " +
                                             describe(panel_id(k), assembly.member_count() > 1) + " (a smaller gap)"
-                                      : "a plate " + format_number(thickness) + " thick does not fit on " +
+                                      : "a plate " + format_human(thickness) + " thick does not fit on " +
                                             describe(panel_id(k), assembly.member_count() > 1) +
                                             ": its bevelled top face vanishes (a thinner plate, or a wider panel)");
         }

@@ -2,6 +2,7 @@
 
 #include "phedra/sheet_page.h"
 
+#include "phedra/cut_loops.h"
 #include "phedra/number_format.h"
 #include "phedra/xml_text.h"
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <string_view>
 
 namespace phedra {
 namespace {
@@ -28,9 +30,10 @@ const char* style_class(LineStyle style) {
   return "";
 }
 
-const char* svg_style(LineStyle style) {
+const char* svg_style(LineStyle style, bool key) {
   switch (style) {
-    case LineStyle::cut: return "stroke=\"#000\" stroke-width=\"0.25\"";
+    // Pure red for the cuts a laser makes; the key's sample of them a red of another value.
+    case LineStyle::cut: return key ? "stroke=\"#d00000\" stroke-width=\"0.25\"" : "stroke=\"#ff0000\" stroke-width=\"0.1\"";
     case LineStyle::mountain: return "stroke=\"#c62828\" stroke-width=\"0.3\" stroke-dasharray=\"3 1 0.6 1\"";
     case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2.5 1.2\"";
     case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.3\" stroke-dasharray=\"0.1 0.9\"";
@@ -80,6 +83,22 @@ double round_down_125(double x) {
 
 }  // namespace
 
+const char* layer_name(const SheetLine& line) {
+  if (line.key) return "KEY";
+  switch (line.style) {
+    case LineStyle::cut: return "CUT";
+    case LineStyle::mountain: return "MOUNTAIN";
+    case LineStyle::valley: return "VALLEY";
+    case LineStyle::flat: return "FLAT";
+    case LineStyle::tab_fold: return "TAB_FOLD";
+    case LineStyle::frame: return "FRAME";
+    case LineStyle::axis: return "AXIS";
+    case LineStyle::hinge: return "HINGE";
+    case LineStyle::leader: return "LABELS";  // marked with the labels, never cut
+  }
+  return "0";
+}
+
 std::string sheet_number(double x) {
   // Sheets are in mm: a ten-thousandth of a millimetre is finer than any cutter (and of a degree, any angle).
   const double r = std::round(x * 1e4) / 1e4;
@@ -107,7 +126,7 @@ void Legend::room(double width) {
 
 void Legend::line(LineStyle style, const std::string& what) {
   room(12.0 + text_width(what, h_));
-  page_.lines.push_back(SheetLine{Vec2(x_, row_ + 0.36 * h_), Vec2(x_ + 10.0, row_ + 0.36 * h_), style});
+  page_.lines.push_back(SheetLine{Vec2(x_, row_ + 0.36 * h_), Vec2(x_ + 10.0, row_ + 0.36 * h_), style, true});
   add_text(page_, what, Vec2(x_ + 12.0, row_), h_);
   x_ += 12.0 + text_width(what, h_) + 6.0;
 }
@@ -140,9 +159,9 @@ void Legend::note(const std::string& what) {
 
 void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest) {
   const double bar = round_down_125(longest);
-  page.lines.push_back(SheetLine{at + Vec2(0, 1.0), at + Vec2(bar, 1.0), LineStyle::cut});
-  page.lines.push_back(SheetLine{at, at + Vec2(0, 2.0), LineStyle::cut});
-  page.lines.push_back(SheetLine{at + Vec2(bar, 0), at + Vec2(bar, 2.0), LineStyle::cut});
+  page.lines.push_back(SheetLine{at + Vec2(0, 1.0), at + Vec2(bar, 1.0), LineStyle::cut, true});
+  page.lines.push_back(SheetLine{at, at + Vec2(0, 2.0), LineStyle::cut, true});
+  page.lines.push_back(SheetLine{at + Vec2(bar, 0), at + Vec2(bar, 2.0), LineStyle::cut, true});
   add_text(page, format_significant(bar) + " mm = " + format_significant(bar / scale) + " model units", at + Vec2(bar + 3.0, 0.0), 2.2, TextRole::note);
 }
 
@@ -151,7 +170,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
   auto X = [](const Vec2& p) { return sheet_number(p.x()); };
   auto Y = [H](const Vec2& p) { return sheet_number(H - p.y()); };
   std::ostringstream svg;
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << sheet_number(size.x()) << "mm\" height=\"" << sheet_number(H)
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" width=\"" << sheet_number(size.x()) << "mm\" height=\"" << sheet_number(H)
       << "mm\" viewBox=\"0 0 " << sheet_number(size.x()) << ' ' << sheet_number(H) << "\">\n<title>" << xml_escape(title)
       << "</title>\n<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   for (const SheetFill& f : page.fills) {
@@ -162,12 +181,42 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
     for (const Vec2& c : f.outline) svg << X(c) << ',' << Y(c) << ' ';
     svg << "\"/>\n";
   }
-  svg << "<g fill=\"none\" stroke-linecap=\"round\">\n";
-  for (const SheetLine& l : page.lines) {
-    svg << "<line class=\"" << style_class(l.style) << "\" x1=\"" << X(l.a) << "\" y1=\"" << Y(l.a) << "\" x2=\"" << X(l.b) << "\" y2=\"" << Y(l.b) << "\" "
-        << svg_style(l.style) << "/>\n";
+  auto layer = [&](const char* name) {
+    svg << "<g id=\"" << name << "\" inkscape:groupmode=\"layer\" inkscape:label=\"" << name
+        << "\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n";
+  };
+  // The cuts as a cutter follows them: closed outlines, inner ones first (cut_loops.h).
+  const CutLoops cuts = cut_loops(page.lines);
+  if (!cuts.closed.empty() || !cuts.open.empty()) {
+    layer("CUT");
+    auto points = [&](const std::vector<Vec2>& chain) {
+      std::string out;
+      for (const Vec2& c : chain) out += X(c) + ',' + Y(c) + ' ';
+      return out;
+    };
+    for (const Polygon2& loop : cuts.closed) svg << "<polygon class=\"cut\" points=\"" << points(loop) << "\" " << svg_style(LineStyle::cut, false) << "/>\n";
+    for (const std::vector<Vec2>& chain : cuts.open) svg << "<polyline class=\"cut\" points=\"" << points(chain) << "\" " << svg_style(LineStyle::cut, false) << "/>\n";
+    svg << "</g>\n";
   }
-  svg << "</g>\n<g font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n";
+  auto line = [&](const SheetLine& l) {
+    svg << "<line class=\"" << style_class(l.style) << "\" x1=\"" << X(l.a) << "\" y1=\"" << Y(l.a) << "\" x2=\"" << X(l.b) << "\" y2=\"" << Y(l.b) << "\" "
+        << svg_style(l.style, l.key) << "/>\n";
+  };
+  for (const char* name : {"HINGE", "MOUNTAIN", "VALLEY", "FLAT", "TAB_FOLD", "AXIS", "FRAME", "KEY"}) {
+    bool opened = false;
+    for (const SheetLine& l : page.lines) {
+      if ((l.style == LineStyle::cut && !l.key) || std::string_view(layer_name(l)) != name) continue;
+      if (!opened) layer(name), opened = true;
+      line(l);
+    }
+    if (opened) svg << "</g>\n";
+  }
+  // The labels and their leaders.
+  layer("LABELS");
+  for (const SheetLine& l : page.lines) {
+    if (l.style == LineStyle::leader && !l.key) line(l);
+  }
+  svg << "<g font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\" stroke=\"none\">\n";
   for (const SheetText& t : page.texts) {
     const double degrees = std::atan2(t.box.axis.y(), t.box.axis.x()) * 180.0 / M_PI;
     svg << "<text x=\"" << X(t.box.origin) << "\" y=\"" << Y(t.box.origin) << "\" font-size=\""
@@ -177,7 +226,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
     if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << sheet_number(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
     svg << '>' << xml_escape(t.text) << "</text>\n";
   }
-  svg << "</g>\n</svg>\n";
+  svg << "</g>\n</g>\n</svg>\n";
   return svg.str();
 }
 

@@ -29,7 +29,7 @@ plates="$(sed -n 's/^wrote [^:]*: \([0-9]*\) plates .*/\1/p' <<<"$said")"
 volume="$(sed -n 's/^wrote .*, volume \([^ ]*\) .*/\1/p' <<<"$said")"
 knuckles="$(sed -n 's/^pin hinges: [0-9]* hinges, \([0-9]*\) knuckles.*/\1/p' <<<"$said")"
 pins="$(sed -n 's/.* \([0-9]*\) pins (radius.*/\1/p' <<<"$said")"
-parts="$(sed -n 's/.*), volume \([^;]*\); plates cut back.*/\1/p' <<<"$said")"
+parts="$(sed -n 's/.*), volume \([^ ;]*\)[^;]*; plates cut back.*/\1/p' <<<"$said")"
 [[ -n "$plates" && -n "$volume" && -n "$knuckles" && -n "$pins" && -n "$parts" ]] || { echo "phedra generate --hinge pin said: $said"; exit 1; }
 args+=("$out/pins.stl" "$((plates + knuckles + pins))" "$(python3 -c "print($volume + $parts)")")
 blender -b --factory-startup --python-exit-code 1 -P "$top/tests/blender/stl_in_blender.py" -- "${args[@]}"

@@ -205,7 +205,7 @@ try {
     await page.fill('#thick-value', '3');
     await page.click('#thick-show');
     const refused = await page.$eval('#thick-status', (e) => e.textContent);
-    const thickest = /The thickest plates that fit at t\* on this side are ([0-9.]+) thick/.exec(refused);
+    const thickest = /The thickest plates that fit at t\* are ([0-9.]+) thick/.exec(refused);
     check(/^plates \S+ thick do not fit on panel \d+ \(strip \d+, column \d+, highlighted\): /.test(refused) && thickest && !refused.includes('--thickness'),
       `the refusal of plates 3 thick: "${refused}"`);
     const panelNamed = Number(/panel (\d+)/.exec(refused)?.[1]);

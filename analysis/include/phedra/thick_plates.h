@@ -27,6 +27,7 @@
 
 #include <array>
 #include <iosfwd>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <utility>
@@ -53,8 +54,17 @@ struct ThickOptions {
   std::size_t samples_per_side = 0;
   /// Penetration that counts, relative to the model size (touching is not a collision).
   double relative_tolerance = 1e-9;
-  /// ThickPlates' hinge gap (model units).
+  /// ThickPlates' hinge gap (model units) at `thickness`.
   double hinge_gap = 0.0;
+  /// When the gap follows the plates (--hinge pin: pin_hinge_gap, 1.16 T;
+  /// --hinge gap without a width: T / 4): at thickness T it is
+  /// max(hinge_gap_fixed, hinge_gap_per_thickness T), and the thickest plates
+  /// are searched with it so (0: hinge_gap whatever T).
+  double hinge_gap_per_thickness = 0.0;
+  double hinge_gap_fixed = 0.0;
+  double hinge_gap_at(double t) const {
+    return hinge_gap_per_thickness > 0.0 ? std::max(hinge_gap_fixed, hinge_gap_per_thickness * t) : hinge_gap;
+  }
   /// Also find the thickest plates that fit at t* (ThickReport::thickest).
   bool find_thickest = false;
 };
@@ -189,9 +199,13 @@ struct ThickReport {
   double smallest_bevel = 0.0;  ///< radians
   double volume = 0.0, panel_area = 0.0;
   double hinge_gap = 0.0;
-  /// With find_thickest: the thickest plates on this side that fit at t* (a
-  /// top face on every plate, none colliding there), to 1 %; 0 when none does.
+  /// With find_thickest: the thickest plates that fit at t* (a top face on
+  /// every plate, none colliding there, each thickness with its own hinge gap:
+  /// ThickOptions::hinge_gap_at), to 1 %; 0 when none does. On `thickest_side`:
+  /// this side, or with PlateSide::automatic the side that carries the thicker
+  /// ones (the figure does not depend on the thickness asked for).
   std::optional<double> thickest;
+  PlateSide thickest_side = PlateSide::front;
   bool collision_free_at_t_star() const { return !at_t_star; }
   nlohmann::json to_json() const;
 };

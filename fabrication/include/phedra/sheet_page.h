@@ -22,6 +22,9 @@ enum class TextRole { panel, seam, title, legend, note };
 struct SheetLine {
   Vec2 a, b;
   LineStyle style = LineStyle::cut;
+  /// A line of the key (the legend's samples, the scale bar): drawn in its
+  /// style, never cut (the DXF's KEY layer, the SVG's key group).
+  bool key = false;
 };
 struct SheetFill {
   Polygon2 outline;
@@ -81,6 +84,14 @@ void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest);
 /// A number of a page (a length in mm, an angle in degrees) as text, to four decimals.
 std::string sheet_number(double x);
 
+/// The layer a line is on, in the DXF and as the SVG's groups: CUT, HINGE,
+/// MOUNTAIN, VALLEY, FLAT, TAB_FOLD, AXIS, FRAME, LABELS (leaders), KEY (the key's lines).
+const char* layer_name(const SheetLine& line);
+
+/// The page as SVG (mm): its lines in one group a layer (Inkscape layers,
+/// named as layer_name), the cut outlines closed polygons in pure red
+/// (#ff0000, 0.1 mm: the colour laser drivers map to a vector cut), nothing
+/// else in that colour; the fills and labels as printed.
 std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title);
 std::string pages_pdf(const std::vector<SheetPage>& pages, Vec2 size, const std::string& title);
 std::string page_png(const SheetPage& page, Vec2 size, double dpi = 150.0);
