@@ -141,6 +141,10 @@ void add_outlines_command(CLI::App& app, Context& context) {
         context.out << "thick interval [" << six(r.thick_lower) << ", " << six(r.thick_upper) << "] of [" << six(r.t_lambda)
                     << ", " << six(r.t_mu) << "]\n";
       }
+      // Plates that hardly fold: said in words (as on the first page), with the thickness that would.
+      const std::vector<std::string> words = plates_fold_words(sheets);
+      for (std::size_t k = 0; k < words.size(); ++k) context.err << (k ? "; " : "phedra: warning: ") << words[k];
+      if (!words.empty()) context.err << '\n';
     }
     if (sheets.called_out > 0) {
       context.out << "note: " << sheets.called_out << " label" << (sheets.called_out == 1 ? " is" : "s are")

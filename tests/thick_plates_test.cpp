@@ -27,6 +27,7 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <cstdio>
 #include <sstream>
 
 using namespace phedra;
@@ -440,6 +441,35 @@ TEST_CASE("thick plates: the thickest that fit, the same whatever thickness chec
     CHECK(mm["thickest_at_t_star"].get<double>() == thickest);
     CHECK(mm["thickest_at_t_star_mm"].get<double>() == Approx(thickest * mm["millimetres_per_unit"].get<double>()).epsilon(1e-12));
   }
+}
+
+TEST_CASE("thick plates on cut sheets that hardly fold: said in words on the first page and by the command, with a thickness that folds", "[thick][cli]") {
+  test::TempDir dir("thick");
+  const std::string preset = presets + "/all-plus.json";
+  const test::Run thick = test::phedra_cli({"outlines", preset, "--thickness-mm", "6.5", "-o", (dir.path / "a.svg").string()});
+  REQUIRE(thick.code == 0);
+  CHECK_THAT(thick.err, Contains("phedra: warning: these 6.5 mm plates cannot fold: they collide at t*"));
+  const std::string page = read_file(dir.path / "a-1.svg");
+  CHECK_THAT(page, Contains("these 6.5 mm plates cannot fold: they collide at t*"));
+  const std::size_t at = thick.err.find("fold over half of it (--thickness-mm ");
+  REQUIRE(at != std::string::npos);
+  std::istringstream suggested(thick.err.substr(at + std::string("fold over half of it (--thickness-mm ").size()));
+  std::string mm, flag, side;
+  suggested >> mm >> flag >> side;
+  side.erase(side.find(')'));
+  CHECK(flag == "--plate-side");
+  CHECK_THAT(page, Contains("plates up to " + mm + " mm thick on the " + side + " side fold over half of it"));
+  // As suggested: no warning, and they move over half the flexion interval.
+  const test::Run thin = test::phedra_cli({"outlines", preset, "--thickness-mm", mm, "--plate-side", side, "-o", (dir.path / "b.svg").string()});
+  REQUIRE(thin.code == 0);
+  CHECK(thin.err.find("cannot fold") == std::string::npos);
+  const std::size_t i = thin.out.find("thick interval [");
+  REQUIRE(i != std::string::npos);
+  double a = 0, b = 0, c = 0, d = 0;
+  REQUIRE(std::sscanf(thin.out.c_str() + i, "thick interval [%lf, %lf] of [%lf, %lf]", &a, &b, &c, &d) == 4);
+  CHECK((b - a) >= 0.5 * (d - c) * (1.0 - 1e-6));
+  // Plates that fold over most of it say nothing of the kind.
+  CHECK(test::phedra_cli({"outlines", preset, "--thickness-mm", "1", "-o", (dir.path / "c.svg").string()}).err.find("fold") == std::string::npos);
 }
 
 TEST_CASE("thick plates: check --thickness reports the thick interval, and plates colliding at t* fail, named", "[thick][cli]") {

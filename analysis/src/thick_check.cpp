@@ -186,6 +186,60 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
   return r;
 }
 
+double thick_fraction(const ThickReport& r) {
+  return r.at_t_star || !(r.t_mu > r.t_lambda) ? 0.0 : (r.thick_upper - r.thick_lower) / (r.t_mu - r.t_lambda);
+}
+
+std::optional<ThickFolding> thickest_folding(const Design& design, const BuildabilityReport& thin, const ThickOptions& options,
+                                             double fraction) {
+  std::optional<ThickFolding> best;
+  const std::vector<PlateSide> sides = options.side == PlateSide::automatic ? std::vector<PlateSide>{PlateSide::front, PlateSide::back}
+                                                                             : std::vector<PlateSide>{options.side};
+  for (const PlateSide side : sides) {
+    ThickOptions o = options;
+    o.side = side;
+    o.find_thickest = false;
+    // The part plates `t` thick move over on this side (0 when they do not fit).
+    auto covers = [&](double t) {
+      o.thickness = t;
+      o.hinge_gap = o.hinge_gap_at(t);
+      try {
+        return thick_fraction(check_thickness(design, thin, o));
+      } catch (const InvalidInputError&) {
+        return 0.0;
+      }
+    };
+    ThickOptions probe = o;
+    probe.thickness = 1e-4 * design.assembly.model_size();
+    probe.hinge_gap = probe.hinge_gap_at(probe.thickness);
+    probe.find_thickest = true;
+    double hi = 0.0;
+    try {
+      const ThickReport r = check_thickness(design, thin, probe);
+      hi = r.thickest.value_or(0.0);
+    } catch (const InvalidInputError&) {
+    }
+    double lo = 1e-4 * design.assembly.model_size();
+    if (!(hi > lo)) continue;
+    double at_lo = covers(lo);
+    if (at_lo < fraction) continue;
+    if (const double at_hi = covers(hi); at_hi >= fraction) {
+      lo = hi, at_lo = at_hi;
+    } else {
+      while (hi / lo > 1.02) {
+        const double mid = std::sqrt(lo * hi);
+        if (const double f = covers(mid); f >= fraction) {
+          lo = mid, at_lo = f;
+        } else {
+          hi = mid;
+        }
+      }
+    }
+    if (!best || lo > best->thickness) best = ThickFolding{lo, side, at_lo};
+  }
+  return best;
+}
+
 namespace {
 ThickReport better_side(const Design& design, const BuildabilityReport& thin, const ThickOptions& options,
                         std::pair<double, double> free) {

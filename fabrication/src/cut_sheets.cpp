@@ -142,6 +142,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.sample("12 P7", TextRole::panel, "piece 12 in assembly order, panel 7 of the 3D files");
     legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
                 "assembly (order, views) on the last pages");
+    for (const std::string& words : plates_fold_words(s)) legend.note(words);
     footer(page, s);
     return s.page.y() - legend.bottom();
   }
@@ -202,6 +203,31 @@ Vec2 page_size_from_string(const std::string& name) {
     return size;
   }
   throw InvalidInputError("--page", "unknown page size \"" + name + "\" (use a4, letter, a3 or WxH in mm, e.g. 300x200)");
+}
+
+std::vector<std::string> plates_fold_words(const CutSheets& s) {
+  if (!s.thick || !s.hardly_fold) return {};
+  const ThickReport& r = *s.thick;
+  const double f = thick_fraction(r);
+  const std::string these = "these " + format_significant(s.thickness_mm) + " mm plates ";
+  std::vector<std::string> out;
+  if (r.at_t_star) {
+    out.push_back(these + "cannot fold: they collide at t*");
+  } else if (f < 1e-6) {
+    out.push_back(these + "cannot fold: they cannot move from t* (" + format_significant(r.t_star) + ")");
+  } else {
+    out.push_back(these + "can hardly fold: they move over " + format_significant(100.0 * f, 2) + " % of the flexion interval only");
+  }
+  if (s.folding) {
+    // Three significant digits, rounded down: the thickness suggested must fold as said.
+    const double x = s.folding->thickness * s.scale, unit = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
+    const std::string mm = format_significant(std::floor(x / unit) * unit, 3);
+    out.push_back("plates up to " + mm + " mm thick on the " + to_string(s.folding->side) + " side fold over half of it (--thickness-mm " +
+                  mm + " --plate-side " + to_string(s.folding->side) + ")");
+  } else {
+    out.push_back("no plates fold over half of it, however thin (down to 1e-4 of the model size)");
+  }
+  return out;
 }
 
 std::vector<SheetLine> Piece::lines() const {
@@ -535,7 +561,13 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
     thick.thickness = cut.thickness_mm / base.scale;
     thick.side = cut.side;
     base.mode = PieceMode::panels;
-    base.thick = check_thickness(design, assess_buildability(design), thick);
+    const BuildabilityReport thin = assess_buildability(design);
+    base.thick = check_thickness(design, thin, thick);
+    // Plates that hardly fold: the thickest that fold over half the interval, to suggest.
+    if (thick_fraction(*base.thick) < 0.1) {
+      base.hardly_fold = true;
+      base.folding = thickest_folding(design, thin, thick, 0.5);
+    }
     base.kerf_mm = cut.kerf_mm;
     base.thickness_mm = cut.thickness_mm;
     const ThickPlates plates = thick_plates(design, *base.thick);

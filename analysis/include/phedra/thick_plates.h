@@ -222,4 +222,21 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
 /// The plates check_thickness chose (its report's side and bevel range).
 ThickPlates thick_plates(const Design& design, const ThickReport& report);
 
+/// The part of the flexion interval a report's plates move over (0 when they collide at t*).
+double thick_fraction(const ThickReport& report);
+
+/// The thickest plates whose thick interval covers at least `fraction` of the
+/// flexion interval (what to suggest when the plates asked for hardly fold).
+struct ThickFolding {
+  double thickness = 0.0;  ///< model units, to 2 %
+  PlateSide side = PlateSide::front;
+  double fraction = 0.0;   ///< the part they move over
+};
+/// A bisection of the thickness's logarithm between 1e-4 of the model size and
+/// the thickest plates that fit at t*, on options.side (both with automatic),
+/// each thickness with its own hinge gap; none when even the thinnest do not
+/// cover `fraction`. About twenty thick sweeps: for the few designs that need it.
+std::optional<ThickFolding> thickest_folding(const Design& design, const BuildabilityReport& thin, const ThickOptions& options,
+                                             double fraction);
+
 }  // namespace phedra

@@ -119,12 +119,22 @@ struct CutSheets {
   /// the material: the pieces' cut area and the pages they use (the assembly
   /// page, the last, holds no piece).
   std::optional<ThickReport> thick;
+  /// When the plates move over less than a tenth of the flexion interval: the
+  /// thickest that fold over half of it (none: not even the thinnest do).
+  bool hardly_fold = false;
+  std::optional<ThickFolding> folding;
   double kerf_mm = 0.0, thickness_mm = 0.0;
   double cut_area_mm2 = 0.0;
   std::size_t piece_pages = 0;
   /// The part of the pages' area (those with pieces) the pieces cover.
   double material_used() const { return piece_pages ? cut_area_mm2 / (static_cast<double>(piece_pages) * page.x() * page.y()) : 0.0; }
 };
+
+/// When plates hardly fold (CutSheets::hardly_fold): what the first page and the
+/// command say, in two sentences ("these 3 mm plates cannot fold: they cannot move
+/// from t*", "plates up to 0.812 mm thick on the back side fold over half of it");
+/// empty otherwise.
+std::vector<std::string> plates_fold_words(const CutSheets& sheets);
 
 /// The smallest capital height (mm) printed (issue 27: no label below 2 mm): a
 /// label with less room inside its panel is called out beside its piece.
