@@ -85,6 +85,7 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
   }
   // The gap follows the plates when a pin hinge or a default gap sets it (and the
   // thickest plates are searched so: each thickness with its own gap).
+  if (o.mm) out.millimetres_per_unit = 1.0 / unit;
   out.hinge_gap_fixed = o.hinge_gap * unit;
   if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap_per_thickness = 0.25;
   if (o.hinge == "pin") out.hinge_gap_per_thickness = pin_hinge_gap(1.0);  // linear in the thickness

@@ -750,8 +750,12 @@ TEST_CASE("thick plates on cut sheets: the command, its files and its errors", "
   CHECK_THAT(strips.err, Contains("--pieces: plates cut from sheet material are one piece each"));
   const test::Run thick = test::phedra_cli({"outlines", tube, "--thickness-mm", "80", "-o", (dir.path / "k.pdf").string()});
   CHECK(thick.code == 2);
-  CHECK_THAT(thick.err, Contains("does not fit on panel"));
+  // In the unit it was given in (issue 38): millimetres, as --thickness-mm.
+  CHECK_THAT(thick.err, Contains("--thickness-mm: plates 80 mm thick do not fit on panel"));
   CHECK_FALSE(fs::exists(dir.path / "k.pdf"));
+  const test::Run checked = test::phedra_cli({"check", tube, "--thickness-mm", "80"});
+  CHECK(checked.code == 2);
+  CHECK_THAT(checked.err, Contains("--thickness-mm: plates 80 mm thick do not fit on panel"));
   // --thickness-mm on check means what it means on the sheets: millimetres at their scale.
   const Design design = load_design(tube);
   CutSheetOptions options;

@@ -158,8 +158,17 @@ ThickReport check_thickness(const Design& design, const BuildabilityReport& thin
     throw InvalidInputError("--thickness", "the design is not buildable at t* without thickness (" + thin.summary() +
                                                "): there are no panels to thicken");
   }
-  ThickReport r = options.side != PlateSide::automatic ? check_side(design, thin, options, options.side, *free)
-                                                        : better_side(design, thin, options, *free);
+  ThickReport r;
+  try {
+    r = options.side != PlateSide::automatic ? check_side(design, thin, options, options.side, *free)
+                                             : better_side(design, thin, options, *free);
+  } catch (const InvalidInputError& e) {
+    // Given in millimetres: refused in millimetres (ThickPlates words it "a plate T thick ...").
+    const std::string said = "a plate " + format_human(options.thickness) + " thick ";
+    if (!options.millimetres_per_unit || e.field() != "--thickness" || e.reason().rfind(said + "does not ", 0) != 0) throw;
+    throw InvalidInputError("--thickness-mm", "plates " + format_human(*options.millimetres_per_unit * options.thickness) +
+                                                  " mm thick do not " + e.reason().substr(said.size() + std::string("does not ").size()));
+  }
   if (options.find_thickest) {
     r.thickest = thickest_at_t_star(design, r.side, {r.bevel_lower, r.bevel_upper}, options);
     if (options.side == PlateSide::automatic && r.at_t_star) {

@@ -559,6 +559,7 @@ CutSheets cut_sheets(const Design& design, const CutSheetOptions& options) {
     plate_options.tabs = false;
     ThickOptions thick;
     thick.thickness = cut.thickness_mm / base.scale;
+    thick.millimetres_per_unit = base.scale;
     thick.side = cut.side;
     base.mode = PieceMode::panels;
     const BuildabilityReport thin = assess_buildability(design);

@@ -67,6 +67,9 @@ struct ThickOptions {
   }
   /// Also find the thickest plates that fit at t* (ThickReport::thickest).
   bool find_thickest = false;
+  /// The thickness was given in millimetres at this scale (--thickness-mm): a
+  /// plate that cannot carry it is refused in millimetres, as --thickness-mm.
+  std::optional<double> millimetres_per_unit;
 };
 
 /// A closed triangle mesh: one plate's solid, outward-oriented.
