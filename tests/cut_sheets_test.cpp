@@ -178,6 +178,12 @@ void check_sheets(const Design& design, const CutSheets& s) {
   // Per page: nothing overlaps (panels, tabs, labels), everything inside the page's content area.
   for (std::size_t k = 0; k < s.pages.size(); ++k) {
     CAPTURE(k);
+    // Piece 1, the first to assemble, on sheet 1, or sheet 1 says where it is (when
+    // that would take a page more: grid-3x3's strips and cells).
+    if (k == 0 && !s.pieces.empty() && s.piece_page[0] != 0) {
+      const std::string where = "piece 1 is on sheet " + std::to_string(s.piece_page[0] + 1);
+      CHECK(std::any_of(s.pages[0].texts.begin(), s.pages[0].texts.end(), [&](const SheetText& t) { return t.text.rfind(where, 0) == 0; }));
+    }
     // The cutter's reading (cut_loops.h, the DXF's CUT layer): each piece one closed loop, nothing open.
     const CutLoops loops = cut_loops(s.pages[k].lines);
     CHECK(loops.open.empty());

@@ -113,10 +113,14 @@ void place(Piece& piece, const Placement& at) {
 }
 
 /// Footer: scale bar and printing note.
-void footer(SheetPage& page, const CutSheets& s) {
+void footer(SheetPage& page, const CutSheets& s, std::size_t k) {
   const double m = 10.0, right = s.page.x() - m;
   add_scale_bar(page, Vec2(m, m), s.scale, std::min(50.0, 0.3 * (right - m)));
-  const std::string note = "print at 100 % (actual size)";
+  // Sheet 1 says where piece 1, the first to assemble, is when the nesting put it
+  // later (there in the footer: the key's room is measured before the layout).
+  const bool elsewhere = k == 0 && !s.piece_page.empty() && s.piece_page[0] != 0;
+  const std::string note = (elsewhere ? "piece 1 is on sheet " + std::to_string(s.piece_page[0] + 1) + "; " : std::string()) +
+                           "print at 100 % (actual size)";
   add_text(page, note, Vec2(right - text_width(note, 2.2), m), 2.2, TextRole::note);
 }
 
@@ -132,7 +136,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
   Legend legend(page, m, right, top - 11.0);
   if (k > 0) {
     legend.note("the key to the lines and labels is on sheet 1");
-    footer(page, s);
+    footer(page, s, k);
     return s.page.y() - legend.bottom();
   }
   if (s.thick) {
@@ -143,7 +147,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
                 "assembly (order, views) on the last pages");
     for (const std::string& words : plates_fold_words(s)) legend.note(words);
-    footer(page, s);
+    footer(page, s, k);
     return s.page.y() - legend.bottom();
   }
   legend.line(LineStyle::cut, "cut");
@@ -164,7 +168,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
   legend.sample("12 P3", TextRole::panel, "piece 12 in assembly order, on its first panel");
   legend.note(std::string("pieces numbered in assembly order, ") + (s.mode == PieceMode::columns ? "column by column" : "row by row") +
               "; nested to save paper");
-  footer(page, s);
+  footer(page, s, k);
   return s.page.y() - legend.bottom();
 }
 
@@ -445,6 +449,37 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
         spots = std::move(other);
         pages = taken.size();
       }
+    }
+  }
+  // Piece 1, the first to assemble, on sheet 1: its page swapped with the first
+  // when its pieces fit below the first page's key (the pieces sit at the top of
+  // a page: they move down by the key's extra height, the first page's up), else
+  // the nesting once more with it first, kept when that takes no page more.
+  if (!s.pieces.empty() && spots[0].page != 0) {
+    const std::size_t p = spots[0].page;
+    const double extra = (s.later_content.height - s.content.height) / cell;
+    const int down = static_cast<int>(std::ceil(extra - 1e-9)), up = static_cast<int>(std::floor(extra + 1e-9));
+    bool fits = true;
+    for (std::size_t k = 0; k < s.pieces.size(); ++k) fits = fits && (spots[k].page != p || spots[k].y >= down);
+    if (fits) {
+      for (Spot& spot : spots) {
+        if (spot.page == p) {
+          spot.page = 0, spot.y -= down;
+        } else if (spot.page == 0) {
+          spot.page = p, spot.y += up;
+        }
+      }
+    }
+  }
+  if (!s.pieces.empty() && spots[0].page != 0) {
+    std::vector<std::size_t> first{0};
+    for (const std::size_t k : order) {
+      if (k != 0) first.push_back(k);
+    }
+    std::vector<Spot> other = nest(first);
+    if (taken.size() <= pages) {
+      spots = std::move(other);
+      pages = taken.size();
     }
   }
   for (std::size_t k = 0; k < s.pieces.size(); ++k) {
