@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <stdexcept>
 #include <system_error>
 #include <unistd.h>
@@ -71,7 +72,7 @@ std::string cut_sheets_dxf(const CutSheets& s) {
     }
     dw.tableEnd();
     dw.tableStyle(1);
-    dxf.writeStyle(dw, DL_StyleData("standard", 0, 0.0, 1.0, 0.0, 0, 2.5, "txt", ""));
+    dxf.writeStyle(dw, DL_StyleData("standard", 0, 0.0, 1.0, 0.0, 0, 2.5, "DejaVuSans.ttf", ""));
     dw.tableEnd();
     dxf.writeView(dw);
     dxf.writeUcs(dw);
@@ -93,6 +94,16 @@ std::string cut_sheets_dxf(const CutSheets& s) {
 
     dw.sectionEntities();
     auto on = [](const char* layer) { return DL_Attributes(layer, by_layer, 0, "BYLAYER", 1.0); };
+    // A key's sample line: on KEY, in the colour of the layer it shows (a mountain fold's red, ...).
+    auto key_sample = [](const SheetLine& l) {
+      SheetLine shown = l;
+      shown.key = false;
+      int colour = by_layer;
+      for (const auto& [name, c] : layers) {
+        if (std::string_view(name) == layer_name(shown)) colour = c;
+      }
+      return DL_Attributes("KEY", colour, 0, "BYLAYER", 1.0);
+    };
     auto polyline = [&](const std::vector<Vec2>& points, bool closed, const char* layer, const Vec2& shift) {
       dxf.writePolyline(dw, DL_PolylineData(static_cast<int>(points.size()), 0, 0, closed ? 1 : 0), on(layer));
       for (const Vec2& p : points) dxf.writeVertex(dw, DL_VertexData(p.x() + shift.x(), p.y() + shift.y(), 0.0, 0.0));
@@ -107,7 +118,7 @@ std::string cut_sheets_dxf(const CutSheets& s) {
       for (const SheetLine& l : s.pages[k].lines) {
         if (l.style == LineStyle::cut && !l.key) continue;  // in the loops above
         dxf.writeLine(dw, DL_LineData(l.a.x() + shift.x(), l.a.y() + shift.y(), 0.0, l.b.x() + shift.x(), l.b.y() + shift.y(), 0.0),
-                      on(layer_name(l)));
+                      l.key ? key_sample(l) : on(layer_name(l)));
       }
       for (const SheetText& t : s.pages[k].texts) {
         const Vec2 at = t.box.origin + shift;

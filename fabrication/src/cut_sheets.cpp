@@ -146,7 +146,7 @@ double decorate(SheetPage& page, const CutSheets& s, std::size_t k, bool any_unc
     legend.sample("12 P7", TextRole::panel, "piece 12 in assembly order, panel 7 of the 3D files");
     legend.note("plates " + sheet_number(s.thickness_mm) + " mm thick, straight cuts inside the bevelled plates; "
                 "assembly (order, views) on the last pages");
-    for (const std::string& words : plates_fold_words(s)) legend.note(words);
+    for (const std::string& words : plates_fold_words(s)) legend.warning(words);
     footer(page, s, k);
     return s.page.y() - legend.bottom();
   }

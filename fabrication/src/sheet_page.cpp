@@ -33,7 +33,7 @@ const char* style_class(LineStyle style) {
 const char* svg_style(LineStyle style, bool key) {
   switch (style) {
     // Pure red for the cuts a laser makes; the key's sample of them a red of another value.
-    case LineStyle::cut: return key ? "stroke=\"#d00000\" stroke-width=\"0.25\"" : "stroke=\"#ff0000\" stroke-width=\"0.1\"";
+    case LineStyle::cut: return key ? "stroke=\"#d00000\" stroke-width=\"0.25\"" : "stroke=\"#ff0000\" stroke-width=\"0.25\"";
     case LineStyle::mountain: return "stroke=\"#c62828\" stroke-width=\"0.3\" stroke-dasharray=\"3 1 0.6 1\"";
     case LineStyle::valley: return "stroke=\"#1e5bb8\" stroke-width=\"0.3\" stroke-dasharray=\"2.5 1.2\"";
     case LineStyle::flat: return "stroke=\"#2e7d32\" stroke-width=\"0.3\" stroke-dasharray=\"0.1 0.9\"";
@@ -68,6 +68,7 @@ const char* text_colour(TextRole role) {
   switch (role) {
     case TextRole::seam: return "#0b57a8";
     case TextRole::panel: return "#444";
+    case TextRole::warning: return "#b3261e";
     default: return "#000";
   }
 }
@@ -157,6 +158,13 @@ void Legend::note(const std::string& what) {
   x_ += text_width(what, h_) + 6.0;
 }
 
+void Legend::warning(const std::string& what) {
+  const double width = 1.12 * text_width(what, h_);  // bold DejaVu: about 12 % wider than the regular
+  room(width);
+  page_.texts.push_back(SheetText{what, Box2{Vec2(x_, row_), Vec2::UnitX(), width, h_}, TextRole::warning});
+  x_ += width + 6.0;
+}
+
 void add_scale_bar(SheetPage& page, Vec2 at, double scale, double longest) {
   const double bar = round_down_125(longest);
   page.lines.push_back(SheetLine{at + Vec2(0, 1.0), at + Vec2(bar, 1.0), LineStyle::cut, true});
@@ -222,7 +230,7 @@ std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title)
     svg << "<text x=\"" << X(t.box.origin) << "\" y=\"" << Y(t.box.origin) << "\" font-size=\""
         << sheet_number(font_size_for_capitals(t.box.height)) << "\" textLength=\"" << sheet_number(t.box.width)
         << "\" lengthAdjust=\"spacingAndGlyphs\" fill=\"" << text_colour(t.role) << '"'
-        << (t.role == TextRole::title ? " font-weight=\"bold\"" : "");
+        << (t.role == TextRole::title || t.role == TextRole::warning ? " font-weight=\"bold\"" : "");
     if (std::abs(degrees) > 1e-9) svg << " transform=\"rotate(" << sheet_number(-degrees) << ' ' << X(t.box.origin) << ' ' << Y(t.box.origin) << ")\"";
     svg << '>' << xml_escape(t.text) << "</text>\n";
   }

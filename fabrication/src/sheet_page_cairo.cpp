@@ -76,7 +76,7 @@ void draw(cairo_t* cr, const SheetPage& page, double H) {
     cairo_stroke(cr);
   }
   for (const SheetText& t : page.texts) {
-    const bool bold = t.role == TextRole::title;
+    const bool bold = t.role == TextRole::title || t.role == TextRole::warning;
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, font_size_for_capitals(t.box.height));
     cairo_text_extents_t extents;
@@ -85,6 +85,8 @@ void draw(cairo_t* cr, const SheetPage& page, double H) {
       cairo_set_source_rgb(cr, 0.043, 0.341, 0.659);
     } else if (t.role == TextRole::panel) {
       cairo_set_source_rgb(cr, 0.27, 0.27, 0.27);
+    } else if (t.role == TextRole::warning) {
+      cairo_set_source_rgb(cr, 0.702, 0.149, 0.118);
     } else {
       cairo_set_source_rgb(cr, 0, 0, 0);
     }

@@ -67,6 +67,9 @@ with tempfile.TemporaryDirectory() as scratch:
             check(areas == sorted(areas), f"{preset}: page {page + 1}: the outlines are not in order of area")
         key = [e for e in msp if e.dxf.layer == "KEY"]
         check(len(key) >= 4 and all(e.dxftype() == "LINE" for e in key), f"{preset}: {len(key)} key lines")
+        # Each sample in the colour of the lines it stands for (a mountain fold's red, 1; a valley's blue, 5).
+        if "--pieces" in options and "strips" in options:
+            check({1, 5} <= {e.dxf.color for e in key}, f"{preset}: the key's samples in colours {sorted({e.dxf.color for e in key})}")
         check(any(e.dxftype() == "TEXT" and e.dxf.layer == "LABELS" for e in msp), f"{preset}: no labels")
         layers = {e.dxf.layer for e in msp}
         check(layers <= {"CUT", "HINGE", "MOUNTAIN", "VALLEY", "FLAT", "TAB_FOLD", "AXIS", "FRAME", "LABELS", "KEY"},

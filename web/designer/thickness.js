@@ -74,7 +74,7 @@ export function createThickness({ scene, state, designer, surface, requestRender
         if (m) surface.highlightPanel(Number(m[1]));
         const what = m ? `on panel ${m[1]} (${m[3] ? `${m[3]}, ` : ''}highlighted): ${withNumbers(m[4], format)}` : `: ${withNumbers(r.message, format)}`;
         say(`plates ${format(thickness)} thick do not fit ${what}.` +
-            (r.thickest ? ` The thickest plates that fit at t* are ${format(r.thickest)} thick${side.value === r.thickest_side ? '' : `, on the ${r.thickest_side} side`}: type that or less above.` : ''));
+            (r.thickest ? ` The thickest plates that fit at t* are ${format(r.thickest)} thick${side.value === r.thickest_side ? '' : ` (on the ${r.thickest_side} side${side.value === 'auto' ? ', which auto then takes' : ': choose it'})`}: type that or less above.` : ''));
       } else {
         say(refusal(r));
       }

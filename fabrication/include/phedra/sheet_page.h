@@ -17,7 +17,7 @@ enum class LineStyle { cut, mountain, valley, flat, tab_fold, frame, axis, hinge
 /// filled and outlined, drawn in order (far to near), so nearer faces hide
 /// farther ones: pieces already joined, the ones this step adds, the rest.
 enum class FillStyle { tab, not_cuttable, swatch_tab, swatch_not_cuttable, marker, view_joined, view_added, view_later };
-enum class TextRole { panel, seam, title, legend, note };
+enum class TextRole { panel, seam, title, legend, note, warning };  ///< warning: bold, dark red (what stops a build)
 
 struct SheetLine {
   Vec2 a, b;
@@ -68,6 +68,8 @@ class Legend {
   void sample(const std::string& label, TextRole role, const std::string& what);
   /// A remark in the flow of the items.
   void note(const std::string& what);
+  /// A remark that stops a build (plates that cannot fold): bold, dark red.
+  void warning(const std::string& what);
   double bottom() const { return row_; }
 
  private:
@@ -90,7 +92,7 @@ const char* layer_name(const SheetLine& line);
 
 /// The page as SVG (mm): its lines in one group a layer (Inkscape layers,
 /// named as layer_name), the cut outlines closed polygons in pure red
-/// (#ff0000, 0.1 mm: the colour laser drivers map to a vector cut), nothing
+/// (#ff0000, 0.25 mm: the colour laser software maps to a vector cut), nothing
 /// else in that colour; the fills and labels as printed.
 std::string page_svg(const SheetPage& page, Vec2 size, const std::string& title);
 std::string pages_pdf(const std::vector<SheetPage>& pages, Vec2 size, const std::string& title);
