@@ -10,6 +10,7 @@
 #include "phedra/number_format.h"
 #include "phedra/self_intersection.h"
 #include "phedra/solid_export.h"
+#include "phedra/print_beds.h"
 #include "phedra/thick_plates.h"
 #include "phedra/hinge_pins.h"
 #include "buildability_warning.h"
@@ -21,6 +22,7 @@
 #include <limits>
 #include <filesystem>
 #include <memory>
+#include <numeric>
 #include <ostream>
 
 namespace phedra::cli {
@@ -42,6 +44,8 @@ struct GenerateOptions {
   bool no_self_intersection = false;
   std::optional<std::size_t> intersection_samples;  ///< default: sweep_samples_for(panels)
   ThicknessOptions thickness;
+  std::string layout = "assembled";  ///< --layout: assembled (at t) or print (laid flat on beds)
+  std::string bed = "200x200";       ///< --bed, mm
 };
 
 /// --no-self-intersection: the intersection-free sub-interval around t*.
@@ -160,6 +164,61 @@ void write_gltf(Context& context, const Design& design, const GenerateOptions& o
   }
 }
 
+/// --layout print: the solids (mm; plates first, then hinge parts) laid flat on
+/// beds, the plates named and ordered by their numbers on the cut sheets; one
+/// file a bed when they need more than one (parts-1.3mf, parts-2.3mf, ...).
+void write_print_beds(Context& context, const Design& design, const GenerateOptions& o, const ThickPlates& plates,
+                      std::vector<Solid> solids, std::vector<std::string> names, double mm, const std::string& what) {
+  const Vec2 bed = bed_size_from_string(o.bed);
+  const std::vector<std::size_t> numbers = plate_sheet_numbers(design);
+  std::vector<std::size_t> order(solids.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t count = plates.plates();
+  auto number = [&](std::size_t k) { return numbers.at(plates.panel(k)); };
+  std::stable_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count),
+                   [&](std::size_t a, std::size_t b) { return number(a) < number(b); });
+  std::vector<Solid> parts;
+  std::vector<std::string> part_names;
+  for (const std::size_t k : order) {
+    parts.push_back(std::move(solids[k]));
+    part_names.push_back(k < count ? "plate_" + std::to_string(number(k)) + "_P" + std::to_string(plates.panel(k))
+                                   : names[k]);
+  }
+  const PrintLayout layout = lay_flat(parts, part_names, bed);
+  const std::string ext = std::filesystem::path(o.output).extension().string();
+  std::vector<std::pair<std::string, std::string>> files;  // every bed drawn before any is written
+  for (std::size_t b = 0; b < layout.beds; ++b) {
+    std::vector<Solid> on_bed;
+    std::vector<std::string> on_bed_names;
+    for (const PrintPart* part : layout.on_bed(b)) {
+      on_bed.push_back(part->solid);
+      on_bed_names.push_back(part->name);
+    }
+    files.push_back({numbered(o.output, b, layout.beds),
+                     solid_bytes(on_bed, on_bed_names, ext,
+                                 what + ", laid flat for printing: bed " + std::to_string(b + 1) + " of " +
+                                     std::to_string(layout.beds) + ", " + format_human(bed.x()) + " x " +
+                                     format_human(bed.y()) + " mm")});
+  }
+  for (const auto& [path, content] : files) emit(content, path, o.preset, context.out);
+  context.out << "wrote " << (files.size() == 1 ? o.output : files.front().first + " ... " + files.back().first) << ": "
+              << count << " plates" << (parts.size() > count ? " and " + std::to_string(parts.size() - count) + " hinge parts" : "")
+              << " of \"" << design.assembly.name() << "\" laid flat on " << layout.beds
+              << (layout.beds == 1 ? " bed" : " beds") << " of " << format_human(bed.x()) << " x " << format_human(bed.y())
+              << " mm (" << (parts.size() > count ? "a plate on its largest face, a knuckle or pin on its end" : "each on its largest face")
+              << ", nothing to support; " << format_human(layout.gap) << " mm apart), in millimetres, " << format_human(mm)
+              << " mm a model unit; plates named plate_<number>_P<panel> by their numbers on the cut sheets (phedra "
+                 "outlines --thickness-mm)\n";
+  for (std::size_t b = 0; b < layout.beds && layout.beds > 1; ++b) {
+    std::size_t plates_here = 0;
+    const std::vector<const PrintPart*> here = layout.on_bed(b);
+    for (const PrintPart* part : here) plates_here += part->name.rfind("plate_", 0) == 0;
+    context.out << "  bed " << b + 1 << " (" << files[b].first << "): " << plates_here << " plates"
+                << (here.size() > plates_here ? ", " + std::to_string(here.size() - plates_here) + " hinge parts" : "")
+                << '\n';
+  }
+}
+
 /// --thickness: every plate a closed solid at t (STL, 3MF, OBJ).
 void write_solids(Context& context, const Design& design, const GenerateOptions& o, const BuildabilityReport& buildability,
                   double t) {
@@ -196,22 +255,27 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
       high = high.cwiseMax(v);
     }
   }
-  const Vec3 size = high - low;
   const std::string ext = std::filesystem::path(o.output).extension().string();
-  const std::string comment = "plates " + format_human(s * report.thickness) + unit + " thick (" + to_string(report.side) +
-                              " side) at t = " + format_human(t) +
-                              (mm ? ", millimetres (" + format_human(s) + " mm a model unit)" : ", model units") +
-                              "; phedra buildability: " + buildability.summary();
-  emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
-  context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(s * report.thickness) << unit
-              << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
-              << format_human(t) << ", volume " << format_human(s * s * s * volume) << (mm ? " mm^3" : "")
-              << " (thickness x panel area " << format_human(s * s * s * report.thickness * report.panel_area)
-              << (mm ? " mm^3" : "") << ")\n";
-  context.out << (mm ? "in millimetres, " + format_human(s) + " mm a model unit (the cut sheets' scale)"
-                     : std::string("in model units (a slicer reads them as millimetres: --thickness-mm for a size in mm)"))
-              << ": overall " << format_human(size.x()) << " x " << format_human(size.y()) << " x "
-              << format_human(size.z()) << unit << "\n";
+  const std::string what = "plates " + format_human(s * report.thickness) + unit + " thick (" + to_string(report.side) + " side)";
+  if (o.layout == "print") {
+    write_print_beds(context, design, o, plates, std::move(solids), std::move(names), *mm,
+                     what + "; phedra buildability: " + buildability.summary());
+  } else {
+    const Vec3 size = high - low;
+    const std::string comment = what + " at t = " + format_human(t) +
+                                (mm ? ", millimetres (" + format_human(s) + " mm a model unit)" : ", model units") +
+                                "; phedra buildability: " + buildability.summary();
+    emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
+    context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(s * report.thickness) << unit
+                << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
+                << format_human(t) << ", volume " << format_human(s * s * s * volume) << (mm ? " mm^3" : "")
+                << " (thickness x panel area " << format_human(s * s * s * report.thickness * report.panel_area)
+                << (mm ? " mm^3" : "") << ")\n";
+    context.out << (mm ? "in millimetres, " + format_human(s) + " mm a model unit (the cut sheets' scale)"
+                       : std::string("in model units (a slicer reads them as millimetres: --thickness-mm for a size in mm)"))
+                << ": overall " << format_human(size.x()) << " x " << format_human(size.y()) << " x "
+                << format_human(size.z()) << unit << "\n";
+  }
   if (o.thickness.hinge == "pin") {
     const PinSizes sizes(report.thickness);
     context.out << "pin hinges: " << pins.hinges << " hinges, " << pins.knuckles << " knuckles (radius "
@@ -229,6 +293,13 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
     context.err << "phedra: warning: t = " << format_human(t) << " is outside the thick interval ["
                 << format_human(report.thick_lower) << ", " << format_human(report.thick_upper)
                 << "]: plates collide there (phedra check --thickness)\n";
+  }
+  // Plates that hardly fold: said in words (as the cut sheets say it), with the thickness that would.
+  if (!report.at_t_star && thick_fraction(report) < 0.1) {
+    const std::optional<ThickFolding> folding = thickest_folding(design, buildability, options, 0.5);
+    const std::vector<std::string> words = plates_fold_words(report, s * report.thickness, s, unit, folding);
+    for (std::size_t k = 0; k < words.size(); ++k) context.err << (k ? "; " : "phedra: warning: ") << words[k];
+    if (!words.empty()) context.err << '\n';
   }
 }
 
@@ -283,9 +354,18 @@ void add_generate_command(CLI::App& app, Context& context) {
                         "Thick plates offset to one side of the panels, bevelled at the hinges, written as solids at "
                         "--at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate (docs/design.md, "
                         "\"Thick panels\")");
+  sub->add_option("--layout", o->layout,
+                  "Solids: assembled, the plates in place at --at (default t*), or print: every part laid flat on its "
+                  "largest face (a plate on its panel face, a knuckle or pin on its end) and nested on printer beds "
+                  "(--bed), plates named plate_<number>_P<panel> by their numbers on the cut sheets; one file a bed "
+                  "when they need more than one (parts-1.3mf, parts-2.3mf, ...); needs --thickness-mm")
+      ->check(CLI::IsMember({"assembled", "print"}))
+      ->capture_default_str();
+  auto* bed = sub->add_option("--bed", o->bed, "--layout print: the printer's bed, WxH in mm, parts 5 mm apart and from its edges")
+                  ->capture_default_str();
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
-  sub->callback([o, sub, &context] {
+  sub->callback([o, sub, bed, &context] {
     const Format format = format_of(o->output);
     const LoadedDesign loaded = load_with_preset(context, o->preset);
     const Design& design = loaded.design;
@@ -300,6 +380,17 @@ void add_generate_command(CLI::App& app, Context& context) {
     const bool solids = format == Format::stl || format == Format::three_mf || (format == Format::obj && thick);
     if (thick && !solids) {
       throw InvalidInputError("--thickness", "thick plates are written as solids: .stl, .3mf or .obj");
+    }
+    if (o->layout == "print") {
+      if (!o->thickness.mm) {
+        throw InvalidInputError("--layout", "parts laid flat on a printer's bed are in millimetres: give --thickness-mm "
+                                            "(the plates' thickness in mm; --scale or --model-size for the size)");
+      }
+      if (!solids) throw InvalidInputError("--layout", "parts laid flat for printing are written as .stl, .3mf or .obj");
+      if (o->static_t) throw InvalidInputError("--at", "parts laid flat for printing have no pose: drop --at or --layout print");
+      bed_size_from_string(o->bed);  // refused before the work
+    } else if (bed->count() > 0) {
+      throw InvalidInputError("--bed", "the bed is for parts laid flat: add --layout print");
     }
     if (!thick && (format == Format::stl || format == Format::three_mf)) {
       throw InvalidInputError("--thickness", "an " + std::string(format == Format::stl ? "STL" : "3MF") +

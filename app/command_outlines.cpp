@@ -31,13 +31,6 @@ struct OutlinesCommandOptions {
 /// The summary's numbers: 6 significant digits, or round-trip ones with --full-precision.
 std::string six(double x) { return format_human(x); }
 
-/// out.svg -> out-3.svg (one file per page when there are several).
-std::string numbered(const std::string& path, std::size_t page, std::size_t pages) {
-  if (pages == 1) return path;
-  const std::filesystem::path p(path);
-  return (p.parent_path() / (p.stem().string() + "-" + std::to_string(page + 1) + p.extension().string())).string();
-}
-
 }  // namespace
 
 void add_outlines_command(CLI::App& app, Context& context) {

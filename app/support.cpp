@@ -8,6 +8,7 @@
 #include "phedra/preset.h"
 #include "phedra/design_preset.h"
 
+#include <filesystem>
 #include <ostream>
 
 namespace phedra::cli {
@@ -112,6 +113,12 @@ void emit(const std::string& content, const std::string& path, const std::string
   }
   refuse_overwriting_input(path, input);
   write_file_atomically(path, content);
+}
+
+std::string numbered(const std::string& path, std::size_t k, std::size_t n) {
+  if (n == 1) return path;
+  const std::filesystem::path p(path);
+  return (p.parent_path() / (p.stem().string() + "-" + std::to_string(k + 1) + p.extension().string())).string();
 }
 
 /// A field's value for people: numbers with 6 significant digits (or --full-precision), lists in brackets.

@@ -51,6 +51,9 @@ LoadedDesign load_with_preset(Context& context, const std::string& path);
 /// is empty or "-". Refuses to overwrite `input`.
 void emit(const std::string& content, const std::string& path, const std::string& input, std::ostream& out);
 
+/// The file of page (or bed) k of n: out.svg -> out-3.svg when there are several, `path` when n is 1.
+std::string numbered(const std::string& path, std::size_t k, std::size_t n);
+
 /// A field's value for people: numbers with 6 significant digits (or --full-precision), lists in brackets.
 std::string human_value(const nlohmann::json& value);
 

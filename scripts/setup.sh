@@ -10,7 +10,8 @@
 # serial OpenBLAS are the mechanics' eigen-solver, factorization and BLAS, LAPACK its dense SVD;
 # SciPy (quasi-random sampling), Dask's distributed, Zarr and xarray run and store
 # the design-space atlases of python/phedra/atlas; dxflib writes the DXF cut sheets
-# (R2000, closed polylines) and ezdxf audits them in the tests), then the npm packages of web/
+# (R2000, closed polylines) and ezdxf audits them in the tests; PrusaSlicer slices the
+# parts laid flat for printing in tests/prusa), then the npm packages of web/
 # and NLopt for the browser core (built once from Debian's source package of it,
 # scripts/build-nlopt-wasm.sh).
 # Idempotent: a second run installs nothing. Needs root or sudo for apt-get.
@@ -26,6 +27,7 @@ packages=(
   python3-dev python3-pybind11 python3-pytest python3-matplotlib
   python3-scipy python3-distributed python3-zarr python3-xarray
   libdxflib-dev python3-ezdxf
+  prusa-slicer
 )
 
 missing=()

@@ -4,7 +4,7 @@
 # reuses this build) in build-sanitize/. Any report fails the run.
 # Every C++ test runs (every module's), with smaller batches of the slow
 # property tests (PHEDRA_SANITIZE_BUILD); not run here: the clients of the
-# exports (three.js, the glTF validator, Blender, ezdxf, the pages in Chromium, the
+# exports (three.js, the glTF validator, Blender, ezdxf, PrusaSlicer, the pages in Chromium, the
 # WebAssembly core, the Python module: not built here), which test files and
 # pages the Release run already checks, the terminal's progress bar, the BLAS kernels'
 # choice and the shell test of failed outputs (the command's behaviour: the Release
@@ -25,7 +25,7 @@ cmake --build build-sanitize --parallel "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export LSAN_OPTIONS="suppressions=$(pwd)/scripts/lsan.supp"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-clients='^(optimize targets the mechanics: the gap reached, checked by phedra mechanics on the written file|repair: a design buildable over part of the interval is never a result, and the closest says how much|thick plates: the thickest that fit, the same whatever thickness check ran at, with every hinge mode and unit|thick plates on cut sheets that hardly fold: said in words on the first page and by the command, with a thickness that folds|gltf_in_real_clients|gltf_in_blender|stl_in_blender|dxf_in_ezdxf|viewer_in_headless_chromium|build_wasm|wasm_core_in_node|designer_.*|progress_bar_only_on_a_terminal|blas_kernels_for_the_processor|output_failures_leave_no_partial_file)$'
+clients='^(optimize targets the mechanics: the gap reached, checked by phedra mechanics on the written file|repair: a design buildable over part of the interval is never a result, and the closest says how much|thick plates: the thickest that fit, the same whatever thickness check ran at, with every hinge mode and unit|thick plates on cut sheets that hardly fold: said in words on the first page and by the command, with a thickness that folds|gltf_in_real_clients|gltf_in_blender|stl_in_blender|dxf_in_ezdxf|print_beds_in_prusaslicer|viewer_in_headless_chromium|build_wasm|wasm_core_in_node|designer_.*|progress_bar_only_on_a_terminal|blas_kernels_for_the_processor|output_failures_leave_no_partial_file)$'
 fuzz_pid=""
 if [[ -n "${1:-}" ]]; then
   bash scripts/fuzz.sh "$1" > build-sanitize/fuzz.log 2>&1 &

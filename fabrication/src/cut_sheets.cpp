@@ -211,9 +211,14 @@ Vec2 page_size_from_string(const std::string& name) {
 
 std::vector<std::string> plates_fold_words(const CutSheets& s) {
   if (!s.thick || !s.hardly_fold) return {};
-  const ThickReport& r = *s.thick;
+  return plates_fold_words(*s.thick, s.thickness_mm, s.scale, " mm", s.folding);
+}
+
+std::vector<std::string> plates_fold_words(const ThickReport& r, double thickness, double scale, const std::string& unit,
+                                           const std::optional<ThickFolding>& folding) {
   const double f = thick_fraction(r);
-  const std::string these = "these " + format_significant(s.thickness_mm) + " mm plates ";
+  if (f >= 0.1) return {};
+  const std::string these = "these " + format_significant(thickness) + unit + " plates ";
   std::vector<std::string> out;
   if (r.at_t_star) {
     out.push_back(these + "cannot fold: they collide at t*");
@@ -222,12 +227,12 @@ std::vector<std::string> plates_fold_words(const CutSheets& s) {
   } else {
     out.push_back(these + "can hardly fold: they move over " + format_significant(100.0 * f, 2) + " % of the flexion interval only");
   }
-  if (s.folding) {
+  if (folding) {
     // Three significant digits, rounded down: the thickness suggested must fold as said.
-    const double x = s.folding->thickness * s.scale, unit = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
-    const std::string mm = format_significant(std::floor(x / unit) * unit, 3);
-    out.push_back("plates up to " + mm + " mm thick on the " + to_string(s.folding->side) + " side fold over half of it (--thickness-mm " +
-                  mm + " --plate-side " + to_string(s.folding->side) + ")");
+    const double x = folding->thickness * scale, step = std::pow(10.0, std::floor(std::log10(x)) - 2.0);
+    const std::string t = format_significant(std::floor(x / step) * step, 3);
+    out.push_back("plates up to " + t + unit + " thick on the " + to_string(folding->side) + " side fold over half of it (" +
+                  (unit.empty() ? "--thickness " : "--thickness-mm ") + t + " --plate-side " + to_string(folding->side) + ")");
   } else {
     out.push_back("no plates fold over half of it, however thin (down to 1e-4 of the model size)");
   }

@@ -135,6 +135,12 @@ struct CutSheets {
 /// from t*", "plates up to 0.812 mm thick on the back side fold over half of it");
 /// empty otherwise.
 std::vector<std::string> plates_fold_words(const CutSheets& sheets);
+/// The same for plates `thickness` thick in a unit (" mm" with `scale` mm a model
+/// unit and the option --thickness-mm, or "" with 1 and --thickness) whose report
+/// is `report`, `folding` the thickest that fold (thickest_folding); empty when
+/// they move over a tenth of the flexion interval or more.
+std::vector<std::string> plates_fold_words(const ThickReport& report, double thickness, double scale, const std::string& unit,
+                                           const std::optional<ThickFolding>& folding);
 
 /// The smallest capital height (mm) printed (issue 27: no label below 2 mm): a
 /// label with less room inside its panel is called out beside its piece.
