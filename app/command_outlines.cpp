@@ -119,6 +119,10 @@ void add_outlines_command(CLI::App& app, Context& context) {
                                  : std::to_string(sheets.folds) + " fold lines, " + std::to_string(sheets.seams) +
                                        " seams to glue (" + std::to_string(sheets.tabs) + " tabs)")
                 << ", scale " << six(sheets.scale) << " mm per model unit\n";
+    if (!sheets.thick) {
+      context.out << "assembly on pages " << sheets.piece_pages + 1 << "-" << sheets.pages.size()
+                  << " (the order, then views of it)\n";
+    }
     if (sheets.thick) {
       const ThickReport& r = *sheets.thick;
       context.out << "plates " << six(sheets.thickness_mm) << " mm thick (" << six(r.thickness) << " model units) on the "

@@ -7,6 +7,7 @@
 #include "phedra/cut_loops.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/cut_sheets.h"
+#include "phedra/files.h"
 #include "phedra/fold_export.h"
 #include "support/cli_run.h"
 #include "phedra/design_preset.h"
@@ -175,8 +176,20 @@ void check_sheets(const Design& design, const CutSheets& s) {
     tabs += with_tab;
   }
   CHECK(tabs == s.tabs);
-  // Per page: nothing overlaps (panels, tabs, labels), everything inside the page's content area.
-  for (std::size_t k = 0; k < s.pages.size(); ++k) {
+  // After the pages of pieces, the assembly: its order in words, then views of it (card and plates alike).
+  CHECK(s.piece_pages >= 1);
+  CHECK(s.pages.size() >= s.piece_pages + 2);
+  for (std::size_t k = s.piece_pages; k < s.pages.size(); ++k) {
+    CHECK(s.pages[k].pieces.empty());
+    CHECK_FALSE(s.pages[k].texts.empty());
+    for (const SheetText& t : s.pages[k].texts) {
+      CAPTURE(t.text);
+      for (const Vec2& c : t.box.corners()) CHECK(inside_box(Box2{Vec2::Zero(), Vec2::UnitX(), s.page.x(), s.page.y()}, c));
+    }
+  }
+  CHECK(s.pages.back().fills.size() >= s.pieces.size());  // the views: at least a panel a piece
+  // Per page of pieces: nothing overlaps (panels, tabs, labels), everything inside the page's content area.
+  for (std::size_t k = 0; k < s.piece_pages; ++k) {
     CAPTURE(k);
     // Piece 1, the first to assemble, on sheet 1, or sheet 1 says where it is (when
     // that would take a page more: grid-3x3's strips and cells).
@@ -310,7 +323,7 @@ TEST_CASE("cut sheets nest pieces by their shapes: the gap kept between pieces, 
     CAPTURE(name);
     const CutSheetOptions options;
     const CutSheets s = cut_sheets(load_design(presets + "/" + name + ".json"), options);
-    CHECK(s.pages.size() <= static_cast<std::size_t>(pages));
+    CHECK(s.piece_pages <= static_cast<std::size_t>(pages));  // (then the assembly's order and views)
     double closest = std::numeric_limits<double>::infinity();
     for (const SheetPage& page : s.pages) {
       for (std::size_t i = 0; i < page.pieces.size(); ++i) {
@@ -362,9 +375,9 @@ TEST_CASE("cut sheets: strips are whole rows, pages and scale as asked, tabs opt
   // A larger model needs more pages; every page carries its number.
   options.scale = 60.0;
   const CutSheets big = cut_sheets(tube, options);
-  CHECK(big.pages.size() > letter.pages.size());
-  const std::string last = sheet_page_svg(big, big.pages.size() - 1);
-  CHECK_THAT(last, Contains("cut sheet " + std::to_string(big.pages.size()) + " of " + std::to_string(big.pages.size())));
+  CHECK(big.piece_pages > letter.piece_pages);
+  const std::string last = sheet_page_svg(big, big.piece_pages - 1);  // the last with pieces (the assembly's pages follow)
+  CHECK_THAT(last, Contains("cut sheet " + std::to_string(big.piece_pages) + " of " + std::to_string(big.pages.size())));
   CHECK_THAT(last, Contains("mm = "));  // the scale bar
   // The key on the first sheet; the later ones point to it and keep the room for pieces.
   CHECK_THAT(sheet_page_svg(big, 0), Contains("mountain fold"));
@@ -451,9 +464,12 @@ TEST_CASE("cut sheets render as PDF pages, SVG and PNG files and DXF", "[outline
   }
   CHECK(!fs::exists(dir / "h.svg"));
   CHECK(!fs::exists(dir / ("h-" + std::to_string(s.pages.size() + 1) + ".svg")));
-  // One page: the name as given.
+  // The pages of pieces, then the assembly's order and its views: one file each.
   REQUIRE(phedra_cli({"outlines", presets + "/parallelogram-tube.json", "-o", (dir / "t.svg").string()}).code == 0);
-  CHECK(fs::exists(dir / "t.svg"));
+  CHECK(fs::exists(dir / "t-3.svg"));
+  CHECK_THAT(read_text_file(dir / "t-2.svg"), Contains("parallelogram-tube - assembly"));
+  CHECK_THAT(read_text_file(dir / "t-3.svg"), Contains("parallelogram-tube - assembly in views"));
+  CHECK(!fs::exists(dir / "t.svg"));
   // DXF: code/value pairs, no NaN, the layers.
   REQUIRE(phedra_cli({"outlines", helix, "-o", (dir / "h.dxf").string(), "--pieces", "columns"}).code == 0);
   std::ifstream dxf_in(dir / "h.dxf");
@@ -532,7 +548,7 @@ TEST_CASE("cut sheets leave oversized panels off and scale by the others", "[out
     for (const PiecePanel& p : piece.panels) CHECK((p.panel < 51 || p.panel > 53));
   }
   CHECK(s.scale > 1.0);  // mm per model unit: the other panels are about 10 units
-  CHECK(s.pages.size() <= 2);  // (two: labels of its small panels called out beside the pieces)
+  CHECK(s.piece_pages <= 2);  // (two: labels of its small panels called out beside the pieces)
   const Run r = phedra_cli({"outlines", phedra::test::data + "/oversized-panels.json", "-o",
                             (std::filesystem::temp_directory_path() / ("over-" + std::to_string(::getpid()) + ".svg")).string()});
   CHECK(r.code == 0);

@@ -42,13 +42,12 @@ ViewFrame view_of(const Points& x) {
 
 }  // namespace
 
-std::vector<SheetPage> assembly_views(const CutSheets& s, const ThickPlates& plates) {
-  const AssemblyMesh& mesh = plates.mesh();
-  const Points x = plates.positions(plates.design().assembly.t_star());
-  // The step that joins each panel (its piece's number); panels on no piece: never.
+std::vector<SheetPage> assembly_views(const CutSheets& s, const AssemblyMesh& mesh, const Points& x) {
+  // The step that joins each panel (its piece's number, the first piece when a
+  // wall is in two cells' pieces); panels on no piece: never.
   std::map<std::size_t, std::size_t> step_of_panel;
   for (const Piece& piece : s.pieces) {
-    for (const PiecePanel& p : piece.panels) step_of_panel[p.panel] = piece.number;
+    for (const PiecePanel& p : piece.panels) step_of_panel.emplace(p.panel, piece.number);
   }
   const std::size_t steps = s.pieces.size();
   if (steps == 0 || mesh.faces.empty()) return {};

@@ -27,15 +27,17 @@ void place_labels(Piece& piece);
 /// the hinge edges). Pieces whose panel has no plate stay as they are.
 void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double scale, double kerf_mm);
 
-/// A page listing the assembly: every piece, the earlier pieces it is hinged to
-/// and along which seam, how the hinges go on.
+/// A page listing the assembly: every piece, the earlier pieces it is hinged
+/// (plates) or glued (card) to and along which seams, how the hinges go on or
+/// the pieces fold and glue.
 std::vector<SheetPage> assembly_pages(const CutSheets& sheets);
 
 /// Pages of small 3D views of the assembly as it grows (issue 27: "a small 3D
 /// view of each step"): up to 12 views a page, each after a group of pieces,
 /// the plates already joined grey, the ones the group adds orange, the rest
 /// white, at t* from one fixed oblique direction (faces drawn far to near).
-std::vector<SheetPage> assembly_views(const CutSheets& sheets, const ThickPlates& plates);
+/// `mesh` and `x`: the panels and their positions at t*.
+std::vector<SheetPage> assembly_views(const CutSheets& sheets, const AssemblyMesh& mesh, const Points& x);
 
 /// The largest label box (capital height at most max_height) inside `outline`,
 /// along edge `edge` (from corner edge to the next; reading upright either

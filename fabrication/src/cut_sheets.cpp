@@ -524,15 +524,18 @@ CutSheets lay_out(const Design& design, const CutSheetOptions& options, CutSheet
   if (!std::isfinite(s.smallest_label)) s.smallest_label = 0.0;
   s.untabbed_seams = options.tabs ? s.seams - s.tabs : 0;
   for (std::size_t k = 0; k < s.pages.size(); ++k) decorate(s.pages[k], s, k, any_uncuttable, any_flat, any_seam_on_fold, s.left_out.size());
+  s.piece_pages = s.pages.size();
   if (plates) {
-    s.piece_pages = s.pages.size();
     s.cut_area_mm2 = 0.0;
     for (const Piece& piece : s.pieces) {
       if (piece.cut) s.cut_area_mm2 += 0.5 * std::abs(signed_area2(*piece.cut));
     }
-    for (SheetPage& assembly : sheets::assembly_pages(s)) s.pages.push_back(std::move(assembly));
-    for (SheetPage& views : sheets::assembly_views(s, *plates)) s.pages.push_back(std::move(views));
   }
+  // The assembly: the order in words, then views of it as it grows (plates and card alike).
+  for (SheetPage& assembly : sheets::assembly_pages(s)) s.pages.push_back(std::move(assembly));
+  const AssemblyMesh& mesh = plates ? plates->mesh() : panel_mesh(design);
+  const Points x = plates ? plates->positions(design.assembly.t_star()) : mesh.positions(design.assembly.evaluate(design.assembly.t_star()));
+  for (SheetPage& views : sheets::assembly_views(s, mesh, x)) s.pages.push_back(std::move(views));
   for (const SheetPage& pg : s.pages) {
     for (const SheetLine& l : pg.lines) {
       if (!l.a.allFinite() || !l.b.allFinite()) throw Error(ExitCode::internal, "a cut-sheet line is not finite");

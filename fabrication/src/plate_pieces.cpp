@@ -145,21 +145,63 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
   for (std::size_t p = 0; p < s.pieces.size(); ++p) {
     for (const SeamSide& side : s.pieces[p].seams) sides[side.seam].push_back(p);
   }
+  const double m = 10.0, top = s.page.y() - m, h = 2.2, pitch = 3.4;
+  // A step a piece: the earlier pieces it joins, each with its seams ("1 (S1, S3), 4 (S9)"),
+  // wrapped at a comma onto indented lines when wider than the page.
   std::vector<std::string> steps;
   for (std::size_t p = 0; p < s.pieces.size(); ++p) {
     const Piece& piece = s.pieces[p];
-    std::string joins;
+    std::map<std::size_t, std::vector<std::size_t>> joined;  // earlier piece's number -> seams
     for (const SeamSide& side : piece.seams) {
       for (std::size_t q : sides[side.seam]) {
-        if (q < p) joins += (joins.empty() ? "" : ", ") + std::to_string(s.pieces[q].number) + " (S" + std::to_string(side.seam) + ")";
+        if (q >= p) continue;
+        std::vector<std::size_t>& seams = joined[s.pieces[q].number];
+        if (std::find(seams.begin(), seams.end(), side.seam) == seams.end()) seams.push_back(side.seam);
       }
     }
-    std::string line = std::to_string(piece.number) + "  P" + std::to_string(piece.panels.front().panel) + ", page " +
-                       std::to_string(s.piece_page[p] + 1) + ": ";
-    line += joins.empty() ? "start here" : "hinge to " + joins;
+    // A plate: its panel; a card piece: its panels' count (the sheet labels each).
+    const std::string what = s.thick ? "P" + std::to_string(piece.panels.front().panel)
+                                     : std::to_string(piece.panels.size()) + (piece.panels.size() == 1 ? " panel" : " panels");
+    std::vector<std::string> parts;
+    for (const auto& [number, seams] : joined) {
+      // Runs of three or more consecutive seams as a range: S28-S36.
+      std::vector<std::size_t> sorted = seams;
+      std::sort(sorted.begin(), sorted.end());
+      std::string part = std::to_string(number) + " (";
+      for (std::size_t k = 0; k < sorted.size();) {
+        std::size_t end = k;
+        while (end + 1 < sorted.size() && sorted[end + 1] == sorted[end] + 1) ++end;
+        part += (k ? ", S" : "S") + std::to_string(sorted[k]);
+        if (end >= k + 2) {
+          part += "-S" + std::to_string(sorted[end]);
+          k = end + 1;
+        } else {
+          ++k;
+        }
+      }
+      parts.push_back(part + ")");
+    }
+    std::string text = std::to_string(piece.number) + "  " + what + ", page " + std::to_string(s.piece_page[p] + 1) + ": " +
+                       (parts.empty() ? "start here" : s.thick ? "hinge to " : "glue to ");
+    for (std::size_t k = 0; k < parts.size(); ++k) text += (k ? ", " : "") + parts[k];
+    // Wrapped at spaces (after the piece's number) onto indented lines.
+    const double room = s.page.x() - 2.0 * m;
+    std::string line;
+    std::size_t from = 0;
+    while (from < text.size()) {
+      std::size_t space = text.find(' ', from + 1);
+      if (space == std::string::npos) space = text.size();
+      const std::string word = text.substr(from, space - from);
+      if (!line.empty() && line != "     " && from > 0 && text_width(line + word, h) > room) {
+        steps.push_back(line);
+        line = "     " + word.substr(word.front() == ' ' ? 1 : 0);
+      } else {
+        line += word;
+      }
+      from = space;
+    }
     steps.push_back(line);
   }
-  const double m = 10.0, top = s.page.y() - m, h = 2.2, pitch = 3.4;
   double column_width = 40.0;
   for (const std::string& step : steps) column_width = std::max(column_width, text_width(step, h) + 5.0);
   const std::size_t columns = std::max<std::size_t>(1, static_cast<std::size_t>((s.page.x() - 2.0 * m) / column_width));
@@ -171,12 +213,19 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
     double y = top - 11.0;
     if (pages.empty()) {
       const std::string face = s.thick && s.thick->side == PlateSide::back ? "printed" : "unprinted";
-      for (const std::string& text : std::vector<std::string>{
-               "Plates " + sheet_number(s.thickness_mm) + " mm thick, " + std::to_string(s.pieces.size()) + " pieces; cut on the solid lines (kerf " +
-                sheet_number(s.kerf_mm) + " mm allowed for).",
-            "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: hinges go on the",
-            face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S<k> meets S<k>.",
-            "Join the pieces in this order (a piece: its number, its panel, its page; then the earlier pieces it is hinged to):"}) {
+      const std::vector<std::string> words =
+          s.thick ? std::vector<std::string>{
+                        "Plates " + sheet_number(s.thickness_mm) + " mm thick, " + std::to_string(s.pieces.size()) +
+                            " pieces; cut on the solid lines (kerf " + sheet_number(s.kerf_mm) + " mm allowed for).",
+                        "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: hinges go on the",
+                        face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S<k> meets S<k>.",
+                        "Join the pieces in this order (a piece: its number, its panel, its page; then the earlier pieces it is hinged to):"}
+                  : std::vector<std::string>{
+                        "Card, " + std::to_string(s.pieces.size()) + " pieces; cut on the solid lines, fold on the others (the key on",
+                        "sheet 1: mountain and valley as seen on the printed side), then glue each seam: S<k> meets S<k>, its tab",
+                        "under the other side's edge (a seam without a tab: tape). The views after the list show where each goes.",
+                        "Join the pieces in this order (a piece: its number, its panels, its page; then the earlier pieces it is glued to):"};
+      for (const std::string& text : words) {
         add_text(page, text, Vec2(m, y), h, TextRole::note);
         y -= pitch + 0.6;
       }
