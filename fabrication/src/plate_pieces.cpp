@@ -218,13 +218,14 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
                         "Plates " + sheet_number(s.thickness_mm) + " mm thick, " + std::to_string(s.pieces.size()) +
                             " pieces; cut on the solid lines (kerf " + sheet_number(s.kerf_mm) + " mm allowed for).",
                         "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: hinges go on the",
-                        face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S<k> meets S<k>.",
+                        face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S3 meets S3.",
                         "Join the pieces in this order (a piece: its number, its panel, its page; then the earlier pieces it is hinged to):"}
                   : std::vector<std::string>{
-                        "Card, " + std::to_string(s.pieces.size()) + " pieces; cut on the solid lines, fold on the others (the key on",
-                        "sheet 1: mountain and valley as seen on the printed side), then glue each seam: S<k> meets S<k>, its tab",
-                        "under the other side's edge (a seam without a tab: tape). The views after the list show where each goes.",
-                        "Join the pieces in this order (a piece: its number, its panels, its page; then the earlier pieces it is glued to):"};
+                        "Card, " + std::to_string(s.pieces.size()) + " pieces: cut on the solid lines, fold on the others (the key on sheet 1",
+                        "shows mountain and valley folds as seen on the printed side), then glue each seam (S3 meets S3):",
+                        "its tab under the other side's edge (a seam with no tab: tape). The views after this list show where",
+                        "each piece goes. Join the pieces in this order (a piece: its number, its panels, its page; then the",
+                        "earlier pieces it is glued to):"};
       for (const std::string& text : words) {
         add_text(page, text, Vec2(m, y), h, TextRole::note);
         y -= pitch + 0.6;
