@@ -233,9 +233,12 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
   for (const Solid& solid : solids) volume += solid.volume();
   const std::size_t plate_count = solids.size();
   HingeParts pins;
+  PinLayout layout;
   double parts_volume = 0.0;
   if (o.thickness.hinge == "pin") {  // knuckles and pins after the plates
-    pins = pin_hinge_parts(plates, positions);
+    // Knuckles kept clear of each other and of the plates at t*, t and the thick interval's ends.
+    layout = pin_layout(plates, {design.assembly.t_star(), t, report.thick_lower, report.thick_upper});
+    pins = pin_hinge_parts(plates, positions, layout);
     for (std::size_t k = 0; k < pins.solids.size(); ++k) {
       parts_volume += pins.solids[k].volume();
       solids.push_back(std::move(pins.solids[k]));
@@ -284,7 +287,12 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
                 << " pins (radius " << format_human(s * sizes.pin_radius) << unit << ", holes "
                 << format_human(s * sizes.hole_radius) << unit << "), volume " << format_human(s * s * s * parts_volume)
                 << (mm ? " mm^3" : "") << "; plates cut back by " << format_human(s * 0.5 * report.hinge_gap) << unit
-                << " from each hinge line\n";
+                << " from each hinge line; knuckles kept clear of the hinges they meet at a vertex and of the plates at t* "
+                   "and the thick interval's ends\n";
+    if (layout.without_knuckles > 0) {
+      context.out << "note: " << layout.without_knuckles << " hinges left without knuckles (too short for knuckles clear "
+                  << "of those of the hinges they meet at a vertex): tape or glue them, or thinner plates\n";
+    }
   }
   if (report.at_t_star) {
     context.err << "phedra: warning: the plates collide at t* (phedra check --thickness " << format_human(report.thickness)

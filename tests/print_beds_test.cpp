@@ -138,7 +138,7 @@ Plates plates_of(const std::string& preset, double thickness_mm, double mm_per_u
   p.count = p.solids.size();
   for (std::size_t k = 0; k < p.count; ++k) p.names.push_back("plate_P" + std::to_string(plates.panel(k)));
   if (pins) {
-    HingeParts parts = pin_hinge_parts(plates, x);
+    HingeParts parts = pin_hinge_parts(plates, x, pin_layout(plates, {plates.design().assembly.t_star()}));
     for (std::size_t k = 0; k < parts.solids.size(); ++k) {
       p.solids.push_back(parts.solids[k]);
       p.names.push_back(parts.names[k]);

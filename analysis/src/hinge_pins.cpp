@@ -1,8 +1,12 @@
 #include "phedra/hinge_pins.h"
 
+#include "phedra/box_tree.h"
+#include "phedra/triangle_overlap.h"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <set>
 #include <utility>
 
 namespace phedra {
@@ -103,20 +107,38 @@ double pin_hinge_gap(double thickness) {
   return 2.0 * (p.knuckle_radius + p.clearance);
 }
 
-HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x) {
-  const PinSizes p(plates.thickness());
+namespace {
+
+using Edge = std::pair<std::size_t, std::size_t>;
+
+/// The hinges with a plate on both sides: mesh edge (lower vertex first) -> its two faces.
+std::map<Edge, std::vector<std::size_t>> hinge_sides(const ThickPlates& plates) {
   const AssemblyMesh& mesh = plates.mesh();
-  std::map<std::size_t, std::size_t> plate_of;  // mesh face -> plate
-  for (std::size_t k = 0; k < plates.plates(); ++k) plate_of[plates.panel(k)] = k;
-  // Mesh edges -> the plates on them.
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<std::size_t>> sides;
-  for (const auto& [face, plate] : plate_of) {
+  std::map<Edge, std::vector<std::size_t>> sides;
+  for (std::size_t k = 0; k < plates.plates(); ++k) {
+    const std::size_t face = plates.panel(k);
     const auto& q = mesh.faces[face];
-    for (std::size_t k = 0; k < 4; ++k) {
-      const std::size_t a = q[k], b = q[(k + 1) % 4];
+    for (std::size_t c = 0; c < 4; ++c) {
+      const std::size_t a = q[c], b = q[(c + 1) % 4];
       if (a != b) sides[{std::min(a, b), std::max(a, b)}].push_back(face);
     }
   }
+  for (auto it = sides.begin(); it != sides.end();) it = it->second.size() == 2 ? std::next(it) : sides.erase(it);
+  return sides;
+}
+
+/// The base margin at each end of a hinge of `length`: a tenth of it, at most T.
+double base_margin(double length, double thickness) { return std::min(0.1 * length, thickness); }
+
+/// The parts of every hinge at x with the layout's margins; `hinge_of[k]`: the
+/// hinge (index into `edges`) of part k, `plate_of[k]`: the face a knuckle's
+/// leaf is glued to (none for pins).
+HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::vector<Edge>& edges,
+                       const std::map<Edge, std::vector<std::size_t>>& sides, const PinLayout& layout,
+                       std::vector<std::size_t>* hinge_of, std::vector<std::size_t>* plate_of) {
+  const PinSizes p(plates.thickness());
+  const AssemblyMesh& mesh = plates.mesh();
+  constexpr std::size_t none = static_cast<std::size_t>(-1);
   auto centroid = [&](std::size_t face) {
     Vec3 c = Vec3::Zero();
     for (std::size_t v : mesh.faces[face]) c += x[v];
@@ -130,15 +152,19 @@ HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x) {
   HingeParts parts;
   std::vector<Solid> pins;
   std::vector<std::string> pin_names;
-  for (const auto& [edge, faces] : sides) {
-    if (faces.size() != 2) continue;
+  std::vector<std::size_t> pin_hinges;
+  for (std::size_t h = 0; h < edges.size(); ++h) {
+    const Edge& edge = edges[h];
+    const std::vector<std::size_t>& faces = sides.at(edge);
     const Vec3 u = x[edge.first], v = x[edge.second];
     const double length = (v - u).norm();
-    const double margin = std::min(0.1 * length, plates.thickness());
-    const double span = length - 2.0 * margin;
+    const auto found = layout.margins.find(edge);
+    const double base = base_margin(length, plates.thickness());
+    const std::array<double, 2> margin = found != layout.margins.end() ? found->second : std::array<double, 2>{base, base};
+    const double span = length - margin[0] - margin[1];
     if (!(span > 3.0 * p.clearance)) continue;
     ++parts.hinges;
-    const std::size_t count = std::clamp<std::size_t>(2 * static_cast<std::size_t>(std::round(0.5 * (span / p.knuckle_length - 1.0))) + 1, 3, 15);
+    const std::size_t count = std::clamp<std::size_t>(2 * static_cast<std::size_t>(std::round(std::max(0.0, 0.5 * (span / p.knuckle_length - 1.0)))) + 1, 3, 15);
     const double segment = span / static_cast<double>(count);
     // Each plate's frame: x into the plate (across the hinge line), y towards its
     // plate side, z along the hinge (turned so that the frame is right-handed).
@@ -160,25 +186,146 @@ HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x) {
       const std::size_t face = faces[k % 2], other = faces[1 - k % 2];
       const Frame f = frame_of(face);
       // Along the hinge from u: this knuckle's piece of the span, parted from its neighbours by the clearance.
-      double a = margin + static_cast<double>(k) * segment + (k > 0 ? 0.5 * p.clearance : 0.0);
-      double b = margin + static_cast<double>(k + 1) * segment - (k + 1 < count ? 0.5 * p.clearance : 0.0);
+      double a = margin[0] + static_cast<double>(k) * segment + (k > 0 ? 0.5 * p.clearance : 0.0);
+      double b = margin[0] + static_cast<double>(k + 1) * segment - (k + 1 < count ? 0.5 * p.clearance : 0.0);
       if (f.origin != u) std::tie(a, b) = std::pair{length - b, length - a};
       parts.solids.push_back(knuckle(f, p, a, b));
       parts.names.push_back("knuckle_" + std::to_string(face) + "_" + std::to_string(other) + "_" + std::to_string(k + 1));
+      if (hinge_of) hinge_of->push_back(h);
+      if (plate_of) plate_of->push_back(face);
       ++parts.knuckles;
     }
     Frame along{u, Vec3::Zero(), Vec3::Zero(), (v - u) / length};
     along.x = frame_of(faces[0]).x;
     along.y = along.z.cross(along.x);
-    pins.push_back(pin(along, p.pin_radius, margin, length - margin));
+    pins.push_back(pin(along, p.pin_radius, margin[0], length - margin[1]));
     pin_names.push_back("pin_" + std::to_string(faces[0]) + "_" + std::to_string(faces[1]));
+    pin_hinges.push_back(h);
     ++parts.pins;
   }
   for (std::size_t k = 0; k < pins.size(); ++k) {
     parts.solids.push_back(std::move(pins[k]));
     parts.names.push_back(std::move(pin_names[k]));
+    if (hinge_of) hinge_of->push_back(pin_hinges[k]);
+    if (plate_of) plate_of->push_back(none);
   }
   return parts;
+}
+
+Box box_of(const Solid& s) {
+  Box b{s.vertices.front(), s.vertices.front()};
+  for (const Vec3& v : s.vertices) b.lo = b.lo.cwiseMin(v), b.hi = b.hi.cwiseMax(v);
+  return b;
+}
+
+/// Whether two solids' surfaces cross deeper than `tolerance` (only the
+/// triangles within the other's box are tested).
+bool solids_cross(const Solid& a, const Box& box_a, const Solid& b, const Box& box_b, double tolerance) {
+  struct Near {
+    PreparedTriangle triangle;
+    Box box;
+  };
+  auto near = [](const Solid& s, const Box& other) {
+    std::vector<Near> out;
+    for (const auto& t : s.triangles) {
+      const Triangle tri{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
+      Box tb{tri[0], tri[0]};
+      for (const Vec3& c : tri) tb.lo = tb.lo.cwiseMin(c), tb.hi = tb.hi.cwiseMax(c);
+      if (tb.overlaps(other)) out.push_back({prepare(tri), tb});
+    }
+    return out;
+  };
+  const std::vector<Near> ta = near(a, box_b), tb = near(b, box_a);
+  for (const Near& p : ta) {
+    for (const Near& q : tb) {
+      if (p.box.overlaps(q.box) && triangle_penetration(p.triangle, q.triangle) > tolerance) return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts) {
+  const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
+  std::vector<Edge> edges;
+  for (const auto& [edge, faces] : sides) edges.push_back(edge);
+  PinLayout layout;
+  const double T = plates.thickness();
+  const double tolerance = 1e-9 * plates.design().assembly.model_size();
+  std::map<std::size_t, std::size_t> plate_index;  // face -> plate
+  for (std::size_t k = 0; k < plates.plates(); ++k) plate_index[plates.panel(k)] = k;
+  std::vector<double> lengths;
+  {
+    const Points x = plates.positions(plates.design().assembly.t_star());
+    for (const Edge& e : edges) {
+      const double length = (x[e.second] - x[e.first]).norm();
+      lengths.push_back(length);
+      layout.margins[e] = {base_margin(length, T), base_margin(length, T)};
+    }
+  }
+  const PinSizes p(T);
+  constexpr std::size_t rounds = 16;
+  // Only pairs with a part of a hinge whose margins changed can cross anew (the
+  // others were found apart): every hinge in the first round.
+  std::vector<bool> changed(edges.size(), true);
+  for (layout.rounds = 0; layout.rounds < rounds; ++layout.rounds) {
+    std::set<std::pair<std::size_t, int>> grow;  // (hinge, end)
+    for (const double t : ts) {
+      const Points x = plates.positions(t);
+      std::vector<std::size_t> hinge_of, plate_of;
+      const HingeParts parts = build_parts(plates, x, edges, sides, layout, &hinge_of, &plate_of);
+      const std::vector<Solid> plate_solids = plates.solids(x);
+      std::vector<Box> boxes;
+      for (const Solid& s : parts.solids) boxes.push_back(box_of(s));
+      for (const Solid& s : plate_solids) boxes.push_back(box_of(s));
+      const std::size_t n = parts.solids.size();
+      auto solid = [&](std::size_t i) -> const Solid& { return i < n ? parts.solids[i] : plate_solids[i - n]; };
+      auto room = [&](std::size_t h) {
+        const auto& m = layout.margins.at(edges[h]);
+        return lengths[h] - m[0] - m[1];
+      };
+      // The end of part i's hinge nearer to point c.
+      auto end_near = [&](std::size_t i, const Vec3& c) {
+        const Edge& e = edges[hinge_of[i]];
+        const Vec3 u = x[e.first], d = x[e.second] - u;
+        return (c - u).dot(d) < 0.5 * d.squaredNorm() ? 0 : 1;
+      };
+      BoxTree(boxes).for_each_pair([&](std::size_t i, std::size_t j) {
+        if (i >= n && j >= n) return true;  // two plates: the thick check's
+        if (!(i < n && changed[hinge_of[i]]) && !(j < n && changed[hinge_of[j]])) return true;
+        if (i < n && j < n && hinge_of[i] == hinge_of[j]) return true;  // one hinge's own parts: apart by design
+        if (i < n && j >= n && plate_of[i] != static_cast<std::size_t>(-1) && plate_index.at(plate_of[i]) == j - n) return true;
+        if (!solids_cross(solid(i), boxes[i], solid(j), boxes[j], tolerance)) return true;
+        // The part to move back: of two hinges, the one with more room left (the
+        // other keeps its knuckles); a part cutting into a plate.
+        const Vec3 c = 0.5 * (boxes[i].lo.cwiseMax(boxes[j].lo) + boxes[i].hi.cwiseMin(boxes[j].hi));
+        std::size_t k = i < n ? i : j;
+        if (i < n && j < n && room(hinge_of[j]) > room(hinge_of[i])) k = j;
+        grow.insert({hinge_of[k], end_near(k, c)});
+        return true;
+      });
+    }
+    if (grow.empty()) break;
+    std::fill(changed.begin(), changed.end(), false);
+    for (const auto& [h, end] : grow) {
+      changed[h] = true;
+      double& m = layout.margins[edges[h]][static_cast<std::size_t>(end)];
+      m += std::max(0.5 * T, 0.5 * m);
+    }
+  }
+  for (std::size_t h = 0; h < edges.size(); ++h) {
+    const auto& m = layout.margins[edges[h]];
+    if (!(lengths[h] - m[0] - m[1] > 3.0 * p.clearance)) ++layout.without_knuckles;
+  }
+  return layout;
+}
+
+HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x, const PinLayout& layout) {
+  const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
+  std::vector<Edge> edges;
+  for (const auto& [edge, faces] : sides) edges.push_back(edge);
+  return build_parts(plates, x, edges, sides, layout, nullptr, nullptr);
 }
 
 }  // namespace phedra

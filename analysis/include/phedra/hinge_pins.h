@@ -24,7 +24,10 @@
 
 #include "phedra/thick_plates.h"
 
+#include <array>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace phedra {
@@ -45,8 +48,23 @@ struct HingeParts {
   std::size_t hinges = 0, knuckles = 0, pins = 0;
 };
 
+/// Where each hinge's knuckles and pin start and end: a margin from each end of
+/// the hinge (model units), at first a tenth of its length but at most T, grown
+/// (by half of itself, at least T/2, up to 16 rounds) at every end where a part
+/// of the hinge cuts into a part of another hinge or into a plate other than its
+/// own at one of the configurations `ts` (t* and the thick interval's ends:
+/// hinges that meet at a vertex then keep their knuckles apart). A hinge whose
+/// margins leave no room has no knuckles and no pin.
+struct PinLayout {
+  std::map<std::pair<std::size_t, std::size_t>, std::array<double, 2>> margins;  ///< mesh edge (lower vertex first) -> {at it, at the other}
+  std::size_t rounds = 0;            ///< rounds of growing the margins taken
+  std::size_t without_knuckles = 0;  ///< hinges left without parts
+};
+PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts);
+
 /// The knuckles and pins of every hinge of `plates` at the mesh positions x
-/// (ThickPlates::positions). Every solid is closed and outward-oriented.
-HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x);
+/// (ThickPlates::positions), with the layout's margins. Every solid is closed
+/// and outward-oriented.
+HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x, const PinLayout& layout);
 
 }  // namespace phedra
