@@ -10,6 +10,7 @@
 #include "phedra/files.h"
 #include "phedra/fold_export.h"
 #include "support/cli_run.h"
+#include "support/polygon_distance.h"
 #include "phedra/design_preset.h"
 
 #include <catch2/catch.hpp>
@@ -299,23 +300,7 @@ TEST_CASE("cut sheets of every shipped preset keep every promise, in every piece
 }
 
 TEST_CASE("cut sheets nest pieces by their shapes: the gap kept between pieces, fewer pages", "[outlines]") {
-  // The distance between two polygons that do not overlap: from a corner of one to an edge of the other.
-  auto distance = [](const Polygon2& a, const Polygon2& b) {
-    double d = std::numeric_limits<double>::infinity();
-    for (int side = 0; side < 2; ++side) {
-      const Polygon2& p = side ? b : a;
-      const Polygon2& q = side ? a : b;
-      for (const Vec2& c : p) {
-        for (std::size_t k = 0; k < q.size(); ++k) {
-          const Vec2 e0 = q[k], e1 = q[(k + 1) % q.size()];
-          const double l2 = (e1 - e0).squaredNorm();
-          const double u = l2 > 0.0 ? std::clamp((c - e0).dot(e1 - e0) / l2, 0.0, 1.0) : 0.0;
-          d = std::min(d, (c - (e0 + u * (e1 - e0))).norm());
-        }
-      }
-    }
-    return d;
-  };
+  const auto distance = test::polygon_distance;
   // (Pages before nesting by shape, with shelves of boxes: 4, 4 and 4; grid-3x3
   // took 3, its third holding one piece, before a sparse last page was nested
   // again with its pieces first.)

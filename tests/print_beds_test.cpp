@@ -13,6 +13,7 @@
 #include "phedra/sheet_geometry.h"
 #include "phedra/thick_plates.h"
 #include "support/cli_run.h"
+#include "support/polygon_distance.h"
 #include "support/test_files.h"
 
 #include <catch2/catch.hpp>
@@ -36,24 +37,8 @@ double area3(const std::vector<Vec3>& p) {
   return 0.5 * twice.norm();
 }
 
-/// The distance between two convex polygons that do not overlap (0 when they do).
-double distance(const Polygon2& a, const Polygon2& b) {
-  if (polygon_overlap(a, b) > 0.0) return 0.0;
-  double d = std::numeric_limits<double>::infinity();
-  for (int side = 0; side < 2; ++side) {
-    const Polygon2& p = side ? b : a;
-    const Polygon2& q = side ? a : b;
-    for (const Vec2& c : p) {
-      for (std::size_t k = 0; k < q.size(); ++k) {
-        const Vec2 e0 = q[k], e1 = q[(k + 1) % q.size()];
-        const double l2 = (e1 - e0).squaredNorm();
-        const double u = l2 > 0.0 ? std::clamp((c - e0).dot(e1 - e0) / l2, 0.0, 1.0) : 0.0;
-        d = std::min(d, (c - (e0 + u * (e1 - e0))).norm());
-      }
-    }
-  }
-  return d;
-}
+/// The distance between two convex polygons (0 when they overlap).
+double distance(const Polygon2& a, const Polygon2& b) { return polygon_overlap(a, b) > 0.0 ? 0.0 : test::polygon_distance(a, b); }
 
 /// Checks the layout of `solids` (mm): each part a proper rigid copy of its
 /// solid, resting on z = 0 with that face's area, inside its bed by the gap,
