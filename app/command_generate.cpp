@@ -363,8 +363,8 @@ void add_generate_command(CLI::App& app, Context& context) {
                         "--at (default t*): .stl (binary), .3mf or .obj, one closed solid a plate (docs/design.md, "
                         "\"Thick panels\")");
   sub->add_option("--layout", o->layout,
-                  "Solids: assembled, the plates in place at --at (default t*), or print: every part laid flat on its "
-                  "largest face (a plate on its panel face, a knuckle or pin on its end) and nested on printer beds "
+                  "Solids: assembled, the plates in place at --at (default t*), or print: every part laid flat on a "
+                  "face with nothing to support (a plate on its largest face, a knuckle or pin on its end) and nested on printer beds "
                   "(--bed), plates named plate_<number>_P<panel> by their numbers on the cut sheets; one file a bed "
                   "when they need more than one (parts-1.3mf, parts-2.3mf, ...); needs --thickness-mm")
       ->check(CLI::IsMember({"assembled", "print"}))
