@@ -7,6 +7,7 @@
 #include "phedra/errors.h"
 #include "phedra/mobility.h"
 #include "support.h"
+#include "phedra/hinge_pins.h"
 #include "phedra/check_report.h"
 #include "phedra/thick_plates.h"
 
@@ -74,6 +75,16 @@ void add_check_command(CLI::App& app, Context& context) {
       thick = check_thickness(loaded.design, *buildability, *plates);
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
+    // --hinge pin: the knuckles laid out as generate lays them (clear of each
+    // other and of the plates at t* and the thick interval's ends), and how many
+    // hinges keep theirs.
+    std::optional<PinLayout> pins;
+    std::size_t hinges = 0;
+    if (thick && thick_fits && options->thickness.hinge == "pin") {
+      const ThickPlates plates = thick_plates(loaded.design, *thick);
+      pins = pin_layout(plates, {thick->t_star, thick->thick_lower, thick->thick_upper});
+      hinges = pins->margins.size();
+    }
     const std::optional<double> mm = millimetres_per_unit(loaded.design, options->thickness);
     // The rigid-panel model's mobility at t*: one internal mechanism, the motion
     // (informative; a design with a degenerate panel has no model: said so).
@@ -97,6 +108,11 @@ void add_check_command(CLI::App& app, Context& context) {
           j["thick"]["millimetres_per_unit"] = *mm;
           j["thick"]["thickness_mm"] = *mm * thick->thickness;
           j["thick"]["thickest_at_t_star_mm"] = thick->thickest ? nlohmann::json(*mm * *thick->thickest) : nlohmann::json(nullptr);
+        }
+        if (pins) {
+          j["thick"]["pin_hinges"] = {{"hinges", hinges},
+                                      {"with_knuckles", hinges - pins->without_knuckles},
+                                      {"without_knuckles", pins->without_knuckles}};
         }
       }
       context.out << j.dump(2) << '\n';
@@ -126,6 +142,15 @@ void add_check_command(CLI::App& app, Context& context) {
           context.out << "  in millimetres (" << format_human(*mm) << " mm a model unit): plates " << format_human(*mm * thick->thickness)
                       << " mm thick";
           if (thick->thickest) context.out << ", the thickest that fit at t* " << format_human(*mm * *thick->thickest) << " mm";
+          context.out << '\n';
+        }
+        if (pins) {
+          context.out << "  pin hinges: " << hinges - pins->without_knuckles << " of " << hinges
+                      << " hinges keep knuckles clear of each other and of the plates at t* and the thick interval's ends";
+          if (pins->without_knuckles > 0) {
+            context.out << "; " << pins->without_knuckles << " too short for that (generate leaves them without knuckles: "
+                        << "tape or glue them, or thinner plates)";
+          }
           context.out << '\n';
         }
       }

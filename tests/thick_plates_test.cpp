@@ -351,6 +351,16 @@ TEST_CASE("thick plates: pin hinges: knuckles on the hinge lines, alternating, c
   if (layout.without_knuckles > 0) {
     CHECK_THAT(run.out, Contains(std::to_string(layout.without_knuckles) + " hinges left without knuckles"));
   }
+  // check --hinge pin says the same layout: how many hinges keep their knuckles (text and JSON).
+  const test::Run said = test::phedra_cli({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "pin"});
+  CHECK(said.code == 0);
+  CHECK_THAT(said.out, Contains("pin hinges: " + std::to_string(parts.hinges) + " of 76 hinges keep knuckles clear of each other"));
+  const test::Run as_json = test::phedra_cli({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "pin", "--json"});
+  REQUIRE(as_json.code == 0);
+  const nlohmann::json pin_hinges = nlohmann::json::parse(as_json.out)["thick"]["pin_hinges"];
+  CHECK(pin_hinges["hinges"] == 76);
+  CHECK(pin_hinges["with_knuckles"] == parts.hinges);
+  CHECK(pin_hinges["without_knuckles"] == layout.without_knuckles);
   std::filesystem::remove(out);
   const test::Run bad = test::phedra_cli({"generate", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "rivet", "-o", out});
   CHECK(bad.code == 2);
