@@ -1,4 +1,5 @@
 #include "support.h"
+#include "phedra/buildability.h"
 #include "number_checks.h"
 
 #include "phedra/hinge_pins.h"
@@ -8,6 +9,8 @@
 #include "phedra/preset.h"
 #include "phedra/design_preset.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 
@@ -60,6 +63,11 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
                       "from generate; docs/design.md)")
       ->check(CLI::IsMember({"none", "gap", "pin"}))
       ->capture_default_str();
+  command->add_option("--printer", o.printer,
+                      "With --hinge pin and --thickness-mm: the printer the hinge parts are made on: fdm (pins 2 mm, "
+                      "clearance 0.3 mm, gaps 0.4 mm, walls 0.8 mm), sla (1, 0.15, 0.2, 0.3 mm) or a JSON file of "
+                      "nozzle_mm, smallest_feature_mm, clearance_mm, pin_mm, gap_mm; plates thinner than the thinnest "
+                      "whose parts it makes are refused, with the scale at which plates that thick fit");
   command->add_option("--plate-side", o.side,
                       "With a thickness: the side of the panels the plates lie on: front (the side the panel normals "
                       "of the exports point to), back, or auto (the side with the wider thick interval)")
@@ -70,6 +78,75 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
 std::optional<double> millimetres_per_unit(const Design& design, const ThicknessOptions& o) {
   if (!o.mm) return std::nullopt;
   return o.scale ? *o.scale : o.model_mm / bounded_model_size(design);
+}
+
+namespace {
+
+/// --printer NAME|FILE: the built-in profiles, or one read from a JSON file.
+PrinterProfile printer_profile(const std::string& name) {
+  if (name == "fdm") return fdm_printer();
+  if (name == "sla") return sla_printer();
+  if (!std::filesystem::exists(name)) {
+    throw InvalidInputError("--printer", "\"" + name + "\" is neither fdm, sla nor a file of a printer's sizes");
+  }
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(read_text_file(name));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InvalidInputError("--printer", name + ": not JSON (" + std::string(e.what()) + ")");
+  }
+  if (!j.is_object()) throw InvalidInputError("--printer", name + ": expected an object of sizes in mm");
+  PrinterProfile p = fdm_printer();
+  p.name = name;
+  const std::pair<const char*, double*> fields[] = {{"nozzle_mm", &p.nozzle_mm},
+                                                    {"smallest_feature_mm", &p.smallest_feature_mm},
+                                                    {"clearance_mm", &p.clearance_mm},
+                                                    {"pin_mm", &p.pin_mm},
+                                                    {"gap_mm", &p.gap_mm}};
+  for (const auto& [key, value] : j.items()) {
+    const auto field = std::find_if(std::begin(fields), std::end(fields), [&](const auto& f) { return key == f.first; });
+    if (field == std::end(fields)) {
+      throw InvalidInputError("--printer", name + ": unknown key \"" + key +
+                                               "\" (nozzle_mm, smallest_feature_mm, clearance_mm, pin_mm, gap_mm)");
+    }
+    if (!value.is_number() || !(value.get<double>() > 0.0) || !(value.get<double>() <= 100.0)) {
+      throw InvalidInputError("--printer", name + ": " + key + " must be a number of millimetres in (0, 100]");
+    }
+    *field->second = value.get<double>();
+  }
+  return p;
+}
+
+}  // namespace
+
+void refuse_unprintable(const Design& design, const ThicknessOptions& o, const ThickOptions& plates) {
+  if (o.hinge != "pin") throw InvalidInputError("--printer", "a printer sizes pin hinge parts: add --hinge pin");
+  if (!o.mm) throw InvalidInputError("--printer", "a printer's sizes are millimetres: give --thickness-mm");
+  const PrinterProfile printer = printer_profile(*o.printer);
+  std::string binding;
+  const double thinnest = thinnest_printable_mm(printer, &binding);
+  if (*o.mm >= thinnest * (1.0 - 1e-12)) return;
+  // The scale at which plates that thick fit: pin hinges' gap grows with the
+  // plates, so the thickest that fit at t* is the same in model units at every scale.
+  ThickOptions probe = plates;
+  probe.thickness = 1e-3 * design.assembly.model_size();
+  probe.hinge_gap = probe.hinge_gap_at(probe.thickness);
+  probe.find_thickest = true;
+  const ThickReport r = check_thickness(design, assess_buildability(design), probe);
+  const double mm_per_unit = *millimetres_per_unit(design, o);
+  std::string where;
+  if (r.thickest && *r.thickest > 0.0) {
+    // The thickest is found to 1 %: 2 % more, rounded up to 3 significant digits.
+    const double need = 1.02 * thinnest / *r.thickest, step = std::pow(10.0, std::floor(std::log10(need)) - 2.0);
+    const double scale = std::ceil(need / step) * step;
+    where = scale <= mm_per_unit ? " (they fit the panels at this scale)"
+                                 : " on a scale of at least " + format_human(scale) + " mm a model unit (--scale; " +
+                                       format_human(mm_per_unit) + " now), where plates that thick fit the panels";
+  }
+  throw InvalidInputError("--printer", printer.name + " makes pin hinge parts for plates at least " + format_human(thinnest) +
+                                           " mm thick (" + binding + "), not " + format_human(*o.mm) +
+                                           " mm: --thickness-mm " + format_human(thinnest) + where +
+                                           ", or --hinge gap for a tape or film hinge");
 }
 
 std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& o) {
@@ -91,6 +168,7 @@ std::optional<ThickOptions> thick_options(const Design& design, const ThicknessO
   if (o.hinge == "gap" && o.hinge_gap == 0.0) out.hinge_gap_per_thickness = 0.25;
   if (o.hinge == "pin") out.hinge_gap_per_thickness = pin_hinge_gap(1.0);  // linear in the thickness
   out.hinge_gap = out.hinge_gap_per_thickness > 0.0 ? out.hinge_gap_at(out.thickness) : out.hinge_gap_fixed;
+  if (o.printer) refuse_unprintable(design, o, out);
   return out;
 }
 

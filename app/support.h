@@ -28,10 +28,15 @@ struct ThicknessOptions {
   double hinge_gap = 0.0;  ///< in the thickness's units
   std::string side = "auto";
   std::string hinge = "none";  ///< none, gap (--hinge-gap, T/4 when not given), pin (hinge_pins.h)
+  std::optional<std::string> printer;  ///< --printer: fdm, sla or a JSON file (PrinterProfile)
 };
 void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);
 /// The plate options asked for (none without --thickness or --thickness-mm).
 std::optional<ThickOptions> thick_options(const Design& design, const ThicknessOptions& options);
+/// --printer: refuses (InvalidInputError "--printer") pin hinge plates thinner than
+/// the thinnest the printer makes parts for, saying the thickness and the scale
+/// at which plates that thick fit the panels.
+void refuse_unprintable(const Design& design, const ThicknessOptions& options, const ThickOptions& plates);
 /// Millimetres a model unit with --thickness-mm (--scale, or the model's size
 /// made --model-size mm: the cut sheets' scale); none with --thickness.
 std::optional<double> millimetres_per_unit(const Design& design, const ThicknessOptions& options);

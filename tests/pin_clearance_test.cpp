@@ -9,14 +9,18 @@
 #include "phedra/hinge_pins.h"
 #include "phedra/thick_plates.h"
 #include "phedra/triangle_overlap.h"
+#include "support/cli_run.h"
 #include "support/test_files.h"
 
 #include <catch2/catch.hpp>
 
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <string>
 
 using namespace phedra;
+using Catch::Matchers::Contains;
 
 namespace {
 
@@ -117,4 +121,63 @@ TEST_CASE("pin hinges: no part cuts into another at t* nor anywhere in the thick
       CHECK(layout.without_knuckles * 4 <= parts.hinges + layout.without_knuckles);
     }
   }
+}
+
+TEST_CASE("pin hinges for a printer: plates too thin for its parts refused with the thickness and scale that work", "[thick][pins][cli]") {
+  std::string binding;
+  CHECK(thinnest_printable_mm(fdm_printer(), &binding) == Approx(5.0));
+  CHECK(binding == "a pin 2 mm across is 0.4 T");
+  CHECK(thinnest_printable_mm(sla_printer()) == Approx(2.5));
+  const std::string tube = test::presets + "/parallelogram-tube.json";
+  const test::Run refused = test::phedra_cli({"check", tube, "--thickness-mm", "2", "--hinge", "pin", "--printer", "fdm"});
+  CAPTURE(refused.err);
+  CHECK(refused.code == 2);
+  const std::string says = "--printer: fdm makes pin hinge parts for plates at least 5 mm thick (a pin 2 mm across is 0.4 T), "
+                           "not 2 mm: --thickness-mm 5 on a scale of at least ";
+  REQUIRE_THAT(refused.err, Contains(says));
+  const std::string scale = refused.err.substr(refused.err.find(says) + says.size(), refused.err.find(" mm a model unit") -
+                                                                                          refused.err.find(says) - says.size());
+  CAPTURE(scale);
+  // What it suggests works: those plates fit at t* on that scale, with pins the printer makes.
+  const test::Run works = test::phedra_cli({"check", tube, "--thickness-mm", "5", "--hinge", "pin", "--printer", "fdm", "--scale", scale});
+  CAPTURE(works.out, works.err);
+  CHECK(works.code == 0);
+  CHECK_THAT(works.out, Contains("pin hinges: "));
+  // A printer of one's own, from a file; and every error of it.
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "phedra-printer";
+  std::filesystem::create_directories(dir);
+  auto file = [&](const std::string& name, const std::string& text) {
+    std::ofstream((dir / name).string()) << text;
+    return (dir / name).string();
+  };
+  const std::string mine = file("mine.json", R"({"pin_mm": 1.2, "gap_mm": 0.2, "clearance_mm": 0.2, "smallest_feature_mm": 0.5, "nozzle_mm": 0.25})");
+  const test::Run own = test::phedra_cli({"check", tube, "--thickness-mm", "2", "--hinge", "pin", "--printer", mine});
+  CHECK(own.code == 2);
+  CHECK_THAT(own.err, Contains("makes pin hinge parts for plates at least 3 mm thick (a pin 1.2 mm across is 0.4 T)"));
+  struct Refusal {
+    std::vector<std::string> args;
+    std::string says;
+  };
+  for (const Refusal& r : std::vector<Refusal>{
+           {{"--thickness-mm", "5", "--printer", "fdm"}, "--printer: a printer sizes pin hinge parts: add --hinge pin"},
+           {{"--thickness", "0.2", "--hinge", "pin", "--printer", "fdm"}, "--printer: a printer's sizes are millimetres: give --thickness-mm"},
+           {{"--thickness-mm", "5", "--hinge", "pin", "--printer", "inkjet"}, "--printer: \"inkjet\" is neither fdm, sla nor a file"},
+           {{"--thickness-mm", "5", "--hinge", "pin", "--printer", file("bad.json", "{")}, "bad.json: not JSON"},
+           {{"--thickness-mm", "5", "--hinge", "pin", "--printer", file("list.json", "[1]")}, "list.json: expected an object of sizes in mm"},
+           {{"--thickness-mm", "5", "--hinge", "pin", "--printer", file("key.json", R"({"pin": 2})")}, "key.json: unknown key \"pin\""},
+           {{"--thickness-mm", "5", "--hinge", "pin", "--printer", file("neg.json", R"({"pin_mm": -2})")}, "neg.json: pin_mm must be a number of millimetres in (0, 100]"}}) {
+    std::vector<std::string> args{"check", tube};
+    args.insert(args.end(), r.args.begin(), r.args.end());
+    const test::Run run = test::phedra_cli(args);
+    CAPTURE(args, run.err);
+    CHECK(run.code == 2);
+    CHECK_THAT(run.err, Contains(r.says));
+  }
+  // generate sizes its parts so too: refused the same way, written on the scale that works.
+  const std::string out = (dir / "pins.stl").string();
+  CHECK(test::phedra_cli({"generate", tube, "--thickness-mm", "2", "--hinge", "pin", "--printer", "fdm", "-o", out}).code == 2);
+  CHECK_FALSE(std::filesystem::exists(out));
+  CHECK(test::phedra_cli({"generate", tube, "--thickness-mm", "5", "--hinge", "pin", "--printer", "fdm", "--scale", scale, "-o", out}).code == 0);
+  CHECK(std::filesystem::exists(out));
+  std::filesystem::remove_all(dir);
 }

@@ -102,6 +102,37 @@ PinSizes::PinSizes(double thickness)
       leaf_reach(0.5 * thickness + 0.08 * thickness + 2.0 * thickness),
       knuckle_length(3.0 * thickness) {}
 
+PrinterProfile fdm_printer() { return PrinterProfile{"fdm", 0.4, 0.8, 0.3, 2.0, 0.4}; }
+PrinterProfile sla_printer() { return PrinterProfile{"sla", 0.05, 0.3, 0.15, 1.0, 0.2}; }
+
+double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding) {
+  const PinSizes unit(1.0);  // the sizes per unit thickness
+  const double wall = std::max(printer.smallest_feature_mm, 2.0 * printer.nozzle_mm);
+  auto mm = [](double x) {
+    std::string text = std::to_string(x);
+    text.erase(text.find_last_not_of('0') + 1);
+    if (text.back() == '.') text.pop_back();
+    return text;
+  };
+  const std::pair<double, std::string> needs[] = {
+      {printer.pin_mm / (2.0 * unit.pin_radius), "a pin " + mm(printer.pin_mm) + " mm across is 0.4 T"},
+      {printer.clearance_mm / unit.clearance, "a clearance of " + mm(printer.clearance_mm) + " mm between parts is 0.08 T"},
+      {printer.gap_mm / unit.clearance, "a gap of " + mm(printer.gap_mm) + " mm between knuckles is 0.08 T"},
+      {wall / (unit.knuckle_radius - unit.hole_radius), "a knuckle's wall of " + mm(wall) + " mm is 0.25 T"},
+      {wall / unit.leaf_thickness, "a leaf " + mm(wall) + " mm thick is 0.3 T"},
+      {0.5 * printer.clearance_mm / (unit.hole_radius - unit.pin_radius),
+       "a pin's play of " + mm(0.5 * printer.clearance_mm) + " mm in its hole is 0.05 T"},
+  };
+  double t = 0.0;
+  for (const auto& [need, why] : needs) {
+    if (need > t) {
+      t = need;
+      if (binding) *binding = why;
+    }
+  }
+  return t;
+}
+
 double pin_hinge_gap(double thickness) {
   const PinSizes p(thickness);
   return 2.0 * (p.knuckle_radius + p.clearance);

@@ -38,6 +38,30 @@ struct PinSizes {
   explicit PinSizes(double thickness);
 };
 
+/// What a printer makes (millimetres): the profile of `--printer` (issue 38,
+/// item 1). The pin hinge parts keep their proportions to the plates'
+/// thickness T (the clearances tested in tests/pin_clearance_test.cpp hold for
+/// every T), so a printer sets the thinnest plates whose parts it makes.
+struct PrinterProfile {
+  std::string name;
+  double nozzle_mm = 0.4;            ///< the narrowest line it lays (a wall of the knuckle is at least two)
+  double smallest_feature_mm = 0.8;  ///< the thinnest wall or leaf it makes
+  double clearance_mm = 0.3;         ///< between two parts that must move apart (knuckle and the other plate)
+  double pin_mm = 2.0;               ///< the thinnest pin (diameter) that holds
+  double gap_mm = 0.4;               ///< the narrowest gap it keeps open (between the knuckles along a hinge)
+};
+/// FDM: nozzle 0.4 mm, walls 0.8 mm, clearance 0.3 mm, pins 2 mm, gaps 0.4 mm;
+/// SLA (resin): 0.05, 0.3, 0.15, 1 and 0.2 mm.
+PrinterProfile fdm_printer();
+PrinterProfile sla_printer();
+
+/// The thinnest plates (mm) whose pin hinge parts `printer` makes: each size of
+/// PinSizes at least what it asks (pin 0.4 T >= pin_mm, clearance 0.08 T >=
+/// clearance_mm, the knuckles' gap 0.08 T >= gap_mm, the knuckle's wall 0.25 T
+/// and the leaf 0.3 T >= smallest_feature_mm and >= 2 nozzle_mm, the pin's play
+/// in its hole 0.05 T >= half the clearance); `binding` names the size that sets it.
+double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding = nullptr);
+
 /// The hinge gap pin hinges need at thickness T: both plates clear of a knuckle
 /// turning about the hinge line, with the clearance.
 double pin_hinge_gap(double thickness);
