@@ -6,6 +6,7 @@
 #include "phedra/buildability.h"
 #include "phedra/errors.h"
 #include "phedra/mobility.h"
+#include "phedra/number_format.h"
 #include "support.h"
 #include "phedra/hinge_pins.h"
 #include "phedra/check_report.h"

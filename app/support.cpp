@@ -1,5 +1,6 @@
 #include "support.h"
 #include "phedra/buildability.h"
+#include "phedra/errors.h"
 #include "number_checks.h"
 
 #include "phedra/hinge_pins.h"
@@ -103,7 +104,9 @@ PrinterProfile printer_profile(const std::string& name) {
                                                     {"clearance_mm", &p.clearance_mm},
                                                     {"pin_mm", &p.pin_mm},
                                                     {"gap_mm", &p.gap_mm}};
-  for (const auto& [key, value] : j.items()) {
+  for (auto item = j.begin(); item != j.end(); ++item) {
+    const std::string key = item.key();
+    const nlohmann::json& value = item.value();
     const auto field = std::find_if(std::begin(fields), std::end(fields), [&](const auto& f) { return key == f.first; });
     if (field == std::end(fields)) {
       throw InvalidInputError("--printer", name + ": unknown key \"" + key +
