@@ -181,7 +181,10 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
       }
       parts.push_back(part + ")");
     }
-    std::string text = std::to_string(piece.number) + "  " + what + ", page " + std::to_string(s.piece_page[p] + 1) + ": " +
+    // A card piece's panel count in brackets: "1 (4 panels)" (SVG and PDF collapse
+    // the spaces of "1  4 panels", which then read as 14).
+    std::string text = std::to_string(piece.number) + (s.thick ? "  " + what : " (" + what + ")") + ", page " +
+                       std::to_string(s.piece_page[p] + 1) + ": " +
                        (parts.empty() ? "start here" : s.thick ? "hinge to " : "glue to ");
     for (std::size_t k = 0; k < parts.size(); ++k) text += (k ? ", " : "") + parts[k];
     // Wrapped at spaces (after the piece's number) onto indented lines.
