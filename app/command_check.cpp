@@ -12,6 +12,7 @@
 #include "phedra/check_report.h"
 #include "phedra/thick_plates.h"
 
+#include <algorithm>
 #include <memory>
 #include <ostream>
 
@@ -77,15 +78,22 @@ void add_check_command(CLI::App& app, Context& context) {
     }
     const bool thick_fits = !thick || thick->collision_free_at_t_star();
     // --hinge pin: the knuckles laid out as generate lays them (clear of each
-    // other and of the plates at t* and the thick interval's ends), and how many
-    // hinges keep theirs.
+    // other and of the plates at t* and over the thick interval), how many
+    // hinges keep theirs, and every part judged as a solid against every other
+    // and the plates, at the layout's configurations and half way between them.
     std::optional<PinLayout> pins;
-    std::size_t hinges = 0;
+    std::vector<PinCrossing> crossings;
+    std::size_t hinges = 0, pin_checked = 0;
     if (thick && thick_fits && options->thickness.hinge == "pin") {
       const ThickPlates plates = thick_plates(loaded.design, *thick);
-      pins = pin_layout(plates, {thick->t_star, thick->thick_lower, thick->thick_upper});
+      pins = pin_layout(plates, pin_configurations(thick->t_star, thick->thick_lower, thick->thick_upper, pin_layout_samples));
       hinges = pins->margins.size();
+      const std::vector<double> ts =
+          pin_configurations(thick->t_star, thick->thick_lower, thick->thick_upper, 2 * pin_layout_samples - 1);
+      crossings = pin_crossings(plates, *pins, ts);
+      pin_checked = ts.size();
     }
+    const bool pins_clear = crossings.empty();
     const std::optional<double> mm = millimetres_per_unit(loaded.design, options->thickness);
     // The rigid-panel model's mobility at t*: one internal mechanism, the motion
     // (informative; a design with a degenerate panel has no model: said so).
@@ -99,7 +107,7 @@ void add_check_command(CLI::App& app, Context& context) {
     if (options->json) {
       nlohmann::json j = report_json(report);
       j["geometry_passed"] = report.passed();
-      j["passed"] = report.passed() && buildable && thick_fits;
+      j["passed"] = report.passed() && buildable && thick_fits && pins_clear;
       if (buildability) j["buildability"] = buildability->to_json();
       j["mobility"] = mobile ? mobile->to_json() : nlohmann::json{{"error", no_mobility}};
       if (thick) {
@@ -111,9 +119,15 @@ void add_check_command(CLI::App& app, Context& context) {
           j["thick"]["thickest_at_t_star_mm"] = thick->thickest ? nlohmann::json(*mm * *thick->thickest) : nlohmann::json(nullptr);
         }
         if (pins) {
+          nlohmann::json crossing = nlohmann::json::array();
+          for (const PinCrossing& c : crossings) {
+            crossing.push_back({{"a", c.a}, {"b", c.b}, {"t", c.t}, {"depth", c.depth}});
+          }
           j["thick"]["pin_hinges"] = {{"hinges", hinges},
                                       {"with_knuckles", hinges - pins->without_knuckles},
-                                      {"without_knuckles", pins->without_knuckles}};
+                                      {"without_knuckles", pins->without_knuckles},
+                                      {"configurations_checked", pin_checked},
+                                      {"crossings", crossing}};
         }
       }
       context.out << j.dump(2) << '\n';
@@ -147,16 +161,28 @@ void add_check_command(CLI::App& app, Context& context) {
         }
         if (pins) {
           context.out << "  pin hinges: " << hinges - pins->without_knuckles << " of " << hinges
-                      << " hinges keep knuckles clear of each other and of the plates at t* and the thick interval's ends";
+                      << " hinges keep knuckles clear of each other and of the plates at t* and over the thick interval";
           if (pins->without_knuckles > 0) {
             context.out << "; " << pins->without_knuckles << " too short for that (generate leaves them without knuckles: "
                         << "tape or glue them, or thinner plates)";
           }
           context.out << '\n';
+          if (pins_clear) {
+            context.out << "  pin hinge parts: knuckles, leaves and pins clear of each other and of the plates at "
+                        << pin_checked << " configurations (t* and " << pin_checked - 1 << " over the thick interval)\n";
+          } else {
+            const auto deepest = std::max_element(crossings.begin(), crossings.end(),
+                                                  [](const PinCrossing& a, const PinCrossing& b) { return a.depth < b.depth; });
+            context.out << "FAIL: pin hinge parts cut into each other or into a plate: " << crossings.size()
+                        << (crossings.size() == 1 ? " crossing" : " crossings") << " at " << pin_checked
+                        << " configurations; the deepest " << deepest->a << " into " << deepest->b << " at t = "
+                        << format_human(deepest->t) << ", " << format_human(deepest->depth / thick->thickness)
+                        << " of the plates' thickness deep\n";
+          }
         }
       }
     }
-    context.exit_code = report.passed() && buildable && thick_fits ? 0 : static_cast<int>(ExitCode::check_failed);
+    context.exit_code = report.passed() && buildable && thick_fits && pins_clear ? 0 : static_cast<int>(ExitCode::check_failed);
   });
 }
 

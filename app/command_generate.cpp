@@ -219,6 +219,26 @@ void write_print_beds(Context& context, const Design& design, const GenerateOpti
   }
 }
 
+/// --print-in-place: refused (nothing written) when two bodies are closer than
+/// the clearance at t: they would print fused. Parts of hinges too close are
+/// moved back by the layout; two plates cannot be.
+void refuse_fused(const Design& design, const ThickPlates& plates, const PinLayout& layout, double t, double clearance,
+                  std::optional<double> mm) {
+  const std::vector<PinCrossing> close = pin_gaps(plates, layout, t, clearance);
+  if (close.empty()) return;
+  const auto nearest = std::min_element(close.begin(), close.end(),
+                                        [](const PinCrossing& a, const PinCrossing& b) { return a.depth < b.depth; });
+  const double s = mm ? *mm : 1.0;
+  const std::string unit = mm ? " mm" : " model units";
+  throw InvalidInputError("--print-in-place", std::to_string(close.size()) + (close.size() == 1 ? " pair" : " pairs") +
+                                                  " of parts of different bodies closer than the clearance " +
+                                                  format_human(s * clearance) + unit + " at t = " + format_human(t) +
+                                                  " (they would print fused): the nearest " + nearest->a + " and " +
+                                                  nearest->b + ", " + format_human(s * nearest->depth) + unit +
+                                                  " apart; print them at another --at, or with thinner plates (\"" +
+                                                  design.assembly.name() + "\")");
+}
+
 /// --thickness: every plate a closed solid at t (STL, 3MF, OBJ).
 void write_solids(Context& context, const Design& design, const GenerateOptions& o, const BuildabilityReport& buildability,
                   double t) {
@@ -235,14 +255,28 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
   HingeParts pins;
   PinLayout layout;
   double parts_volume = 0.0;
+  const bool in_place = o.thickness.print_in_place;
+  std::size_t shells = 0;
   if (o.thickness.hinge == "pin") {  // knuckles and pins after the plates
-    // Knuckles kept clear of each other and of the plates at t*, t and the thick interval's ends.
-    layout = pin_layout(plates, {design.assembly.t_star(), t, report.thick_lower, report.thick_upper});
+    // Knuckles kept clear of each other and of the plates at t*, over the thick
+    // interval and at t; printed in place, the clearance from other bodies at t.
+    std::vector<double> ts = pin_configurations(design.assembly.t_star(), report.thick_lower, report.thick_upper, pin_layout_samples);
+    ts.push_back(t);
+    const double clearance = in_place_clearance(report.thickness);
+    layout = in_place ? pin_layout(plates, ts, InPlace{t, clearance}) : pin_layout(plates, ts);
     pins = pin_hinge_parts(plates, positions, layout);
-    for (std::size_t k = 0; k < pins.solids.size(); ++k) {
-      parts_volume += pins.solids[k].volume();
-      solids.push_back(std::move(pins.solids[k]));
-      names.push_back(pins.names[k]);
+    for (const Solid& part : pins.solids) parts_volume += part.volume();
+    if (in_place) {
+      refuse_fused(design, plates, layout, t, clearance, millimetres_per_unit(design, o.thickness));
+      InPlaceBodies bodies = in_place_bodies(plates, std::move(solids), pins);
+      solids = std::move(bodies.solids);
+      names = std::move(bodies.names);
+      for (const std::size_t n : bodies.shells) shells += n;
+    } else {
+      for (std::size_t k = 0; k < pins.solids.size(); ++k) {
+        solids.push_back(std::move(pins.solids[k]));
+        names.push_back(pins.names[k]);
+      }
     }
   }
   // With --thickness-mm the solids are in millimetres, on the cut sheets' scale (a 3MF
@@ -268,7 +302,8 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
     const std::string comment = what + " at t = " + format_human(t) +
                                 (mm ? ", millimetres (" + format_human(s) + " mm a model unit)" : ", model units") +
                                 "; phedra buildability: " + buildability.summary();
-    emit(solid_bytes(solids, names, ext, comment), o.output, o.preset, context.out);
+    emit(solid_bytes(solids, names, ext, comment, in_place ? design.assembly.name() + "_in_place" : ""), o.output, o.preset,
+         context.out);
     context.out << "wrote " << o.output << ": " << plate_count << " plates " << format_human(s * report.thickness) << unit
                 << " thick on the " << to_string(report.side) << " side of \"" << design.assembly.name() << "\" at t = "
                 << format_human(t) << ", volume " << format_human(s * s * s * volume) << (mm ? " mm^3" : "")
@@ -283,12 +318,26 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
     const PinSizes sizes(report.thickness);
     context.out << "pin hinges: " << pins.hinges << " hinges, " << pins.knuckles << " knuckles (radius "
                 << format_human(s * sizes.knuckle_radius) << unit
-                << ", each a tube joined to a leaf to glue onto its plate's panel face), " << pins.pins
+                << (in_place ? ", each one with its plate" : ", each a tube joined to a leaf to glue onto its plate's panel face")
+                << "), " << pins.pins
                 << " pins (radius " << format_human(s * sizes.pin_radius) << unit << ", holes "
                 << format_human(s * sizes.hole_radius) << unit << "), volume " << format_human(s * s * s * parts_volume)
                 << (mm ? " mm^3" : "") << "; plates cut back by " << format_human(s * 0.5 * report.hinge_gap) << unit
                 << " from each hinge line; knuckles kept clear of the hinges they meet at a vertex and of the plates at t* "
-                   "and the thick interval's ends\n";
+                   "and over the thick interval\n";
+    if (in_place) {
+      context.out << "printed in place: " << solids.size() << " bodies (body_<panel>: a plate, its knuckles and the pins "
+                  << "one with them; " << shells << " closed shells that touch or overlap, joined by the slicer), every part "
+                  << "of one at least " << format_human(s * in_place_clearance(report.thickness)) << unit
+                  << " from every part of another at t = " << format_human(t)
+                  << " (the pin's play in its hole); print with supports, and free every hinge before folding\n";
+      if (mm && !o.thickness.printer && s * in_place_clearance(report.thickness) < fdm_printer().clearance_mm) {
+        context.err << "phedra: warning: parts printed in place " << format_human(s * in_place_clearance(report.thickness))
+                    << " mm apart fuse on an FDM printer (it needs " << format_human(fdm_printer().clearance_mm)
+                    << " mm: --printer fdm says the plates and scale that give it; --printer sla: "
+                    << format_human(sla_printer().clearance_mm) << " mm)\n";
+      }
+    }
     if (layout.without_knuckles > 0) {
       context.out << "note: " << layout.without_knuckles << " hinges left without knuckles (too short for knuckles clear "
                   << "of those of the hinges they meet at a vertex): tape or glue them, or thinner plates\n";
@@ -371,6 +420,11 @@ void add_generate_command(CLI::App& app, Context& context) {
       ->capture_default_str();
   auto* bed = sub->add_option("--bed", o->bed, "--layout print: the printer's bed, WxH in mm, parts 5 mm apart and from its edges")
                   ->capture_default_str();
+  sub->add_flag("--print-in-place", o->thickness.print_in_place,
+                "With --hinge pin: the plates assembled at --at as bodies that print in one piece and move: each plate "
+                "with its knuckles and the pins one with them (closed shells that touch or overlap: OBJ objects body_<panel>; "
+                "a 3MF holds every body in one object, placed whole), every part of one at least the pin's play (0.05 T; "
+                "--printer: its clearance) from every part of another; refused when two would fuse");
   sub->add_flag("-q,--quiet", o->quiet, "No progress bar");
   o->parameters.add_options(sub, 41);
   sub->callback([o, sub, bed, &context] {
@@ -399,6 +453,14 @@ void add_generate_command(CLI::App& app, Context& context) {
       bed_size_from_string(o->bed);  // refused before the work
     } else if (bed->count() > 0) {
       throw InvalidInputError("--bed", "the bed is for parts laid flat: add --layout print");
+    }
+    if (o->thickness.print_in_place) {
+      if (!thick || !solids) throw InvalidInputError("--print-in-place", "parts printed in place are solids: give --thickness or --thickness-mm and .stl, .3mf or .obj");
+      if (o->thickness.hinge != "pin") throw InvalidInputError("--print-in-place", "parts printed in place turn on pins: add --hinge pin");
+      if (o->layout == "print") {
+        throw InvalidInputError("--print-in-place", "parts printed in place are printed assembled; --layout print lays them "
+                                                    "apart: choose one");
+      }
     }
     if (!thick && (format == Format::stl || format == Format::three_mf)) {
       throw InvalidInputError("--thickness", "an " + std::string(format == Format::stl ? "STL" : "3MF") +

@@ -127,7 +127,7 @@ void refuse_unprintable(const Design& design, const ThicknessOptions& o, const T
   if (!o.mm) throw InvalidInputError("--printer", "a printer's sizes are millimetres: give --thickness-mm");
   const PrinterProfile printer = printer_profile(*o.printer);
   std::string binding;
-  const double thinnest = thinnest_printable_mm(printer, &binding);
+  const double thinnest = thinnest_printable_mm(printer, &binding, o.print_in_place);
   if (*o.mm >= thinnest * (1.0 - 1e-12)) return;
   // The scale at which plates that thick fit: pin hinges' gap grows with the
   // plates, so the thickest that fit at t* is the same in model units at every scale.
@@ -146,7 +146,8 @@ void refuse_unprintable(const Design& design, const ThicknessOptions& o, const T
                                  : " on a scale of at least " + format_human(scale) + " mm a model unit (--scale; " +
                                        format_human(mm_per_unit) + " now), where plates that thick fit the panels";
   }
-  throw InvalidInputError("--printer", printer.name + " makes pin hinge parts for plates at least " + format_human(thinnest) +
+  throw InvalidInputError("--printer", printer.name + " makes pin hinge parts" + (o.print_in_place ? " printed in place" : "") +
+                                           " for plates at least " + format_human(thinnest) +
                                            " mm thick (" + binding + "), not " + format_human(*o.mm) +
                                            " mm: --thickness-mm " + format_human(thinnest) + where +
                                            ", or --hinge gap for a tape or film hinge");

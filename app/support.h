@@ -29,6 +29,7 @@ struct ThicknessOptions {
   std::string side = "auto";
   std::string hinge = "none";  ///< none, gap (--hinge-gap, T/4 when not given), pin (hinge_pins.h)
   std::optional<std::string> printer;  ///< --printer: fdm, sla or a JSON file (PrinterProfile)
+  bool print_in_place = false;         ///< generate --print-in-place: the printer's clearance between moving parts
 };
 void add_thickness_options(CLI::App* command, ThicknessOptions& options, const std::string& what);
 /// The plate options asked for (none without --thickness or --thickness-mm).

@@ -1,11 +1,12 @@
 #include "phedra/hinge_pins.h"
 
 #include "phedra/box_tree.h"
-#include "phedra/triangle_overlap.h"
+#include "phedra/solid_crossing.h"
 
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -55,26 +56,39 @@ Solid prism(const Frame& f, const std::vector<Vec2>& outer, const std::vector<Ve
 /// radius r, joined to the leaf [0, W] x [-t, 0] (x into its plate, y towards the
 /// plate side). Outer loop: (R, 0), the arc counter-clockwise to
 /// (sqrt(R^2 - t^2), -t), (W, -t), (W, 0); the hole at the arc's angles.
-Solid knuckle(const Frame& f, const PinSizes& p, double z0, double z1) {
+Solid knuckle(const Frame& f, const PinSizes& p, double z0, double z1, bool hole = true) {
   const double R = p.knuckle_radius, r = p.hole_radius, t = p.leaf_thickness, W = p.leaf_reach;
   const double end = 2.0 * M_PI - std::asin(t / R);
   const std::size_t steps = 32;
+  // The hole's polygon around the circle of radius r (no side nearer the axis;
+  // its corners at the arc's angles and one half way across the leaf's gap),
+  // the pin's inside the pin's circle: the pin's play is at least r less the
+  // pin's radius everywhere.
+  const double closing = 2.0 * M_PI - end;
+  const double around = r / std::cos(std::max(0.5 * end / static_cast<double>(steps), 0.25 * closing));
   std::vector<Vec2> outer, inner;
   for (std::size_t k = 0; k <= steps; ++k) {
     const double a = end * static_cast<double>(k) / static_cast<double>(steps);
     outer.emplace_back(R * std::cos(a), R * std::sin(a));
-    inner.emplace_back(r * std::cos(a), r * std::sin(a));
+    inner.emplace_back(around * std::cos(a), around * std::sin(a));
   }
   outer.emplace_back(W, -t);
   outer.emplace_back(W, 0.0);
   const std::size_t n = outer.size();
   std::vector<std::array<std::size_t, 3>> cap;
+  if (!hole) {  // printed in place around its pin: the profile whole, a fan from (R, 0) (it sees every corner)
+    for (std::size_t k = 1; k + 1 < n; ++k) cap.push_back({0, k, k + 1});
+    return prism(f, outer, {}, cap, z0, z1);
+  }
   for (std::size_t k = 0; k < steps; ++k) {  // the ring between the arc and the hole
     cap.push_back({k, k + 1, n + k + 1});
     cap.push_back({k, n + k + 1, n + k});
   }
-  // The rest, convex: the hole's last and first points, the arc's end, the leaf's corners, the arc's start.
-  const std::array<std::size_t, 6> rest{n + steps, steps, steps + 1, steps + 2, 0, n};
+  // The rest, a fan from the hole's corner across the leaf's gap (it sees every
+  // corner): the hole's last point, the arc's end, the leaf's corners, the arc's
+  // start, the hole's first point.
+  inner.emplace_back(around * std::cos(end + 0.5 * closing), around * std::sin(end + 0.5 * closing));
+  const std::array<std::size_t, 7> rest{n + steps + 1, n + steps, steps, steps + 1, steps + 2, 0, n};
   for (std::size_t k = 1; k + 1 < rest.size(); ++k) cap.push_back({rest[0], rest[k], rest[k + 1]});
   return prism(f, outer, inner, cap, z0, z1);
 }
@@ -105,7 +119,7 @@ PinSizes::PinSizes(double thickness)
 PrinterProfile fdm_printer() { return PrinterProfile{"fdm", 0.4, 0.8, 0.3, 2.0, 0.4}; }
 PrinterProfile sla_printer() { return PrinterProfile{"sla", 0.05, 0.3, 0.15, 1.0, 0.2}; }
 
-double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding) {
+double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding, bool in_place) {
   const PinSizes unit(1.0);  // the sizes per unit thickness
   const double wall = std::max(printer.smallest_feature_mm, 2.0 * printer.nozzle_mm);
   auto mm = [](double x) {
@@ -122,6 +136,9 @@ double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding
       {wall / unit.leaf_thickness, "a leaf " + mm(wall) + " mm thick is 0.3 T"},
       {0.5 * printer.clearance_mm / (unit.hole_radius - unit.pin_radius),
        "a pin's play of " + mm(0.5 * printer.clearance_mm) + " mm in its hole is 0.05 T"},
+      // Printed in place, the pin and the knuckles turning on it are printed apart by its play.
+      {in_place ? printer.clearance_mm / (unit.hole_radius - unit.pin_radius) : 0.0,
+       "a pin printed in place " + mm(printer.clearance_mm) + " mm clear of its hole: 0.05 T"},
   };
   double t = 0.0;
   for (const auto& [need, why] : needs) {
@@ -166,7 +183,7 @@ double base_margin(double length, double thickness) { return std::min(0.1 * leng
 /// leaf is glued to (none for pins).
 HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::vector<Edge>& edges,
                        const std::map<Edge, std::vector<std::size_t>>& sides, const PinLayout& layout,
-                       std::vector<std::size_t>* hinge_of, std::vector<std::size_t>* plate_of) {
+                       std::vector<std::size_t>* hinge_of, std::vector<std::size_t>* plate_of, bool in_place = false) {
   const PinSizes p(plates.thickness());
   const AssemblyMesh& mesh = plates.mesh();
   constexpr std::size_t none = static_cast<std::size_t>(-1);
@@ -183,7 +200,7 @@ HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::ve
   HingeParts parts;
   std::vector<Solid> pins;
   std::vector<std::string> pin_names;
-  std::vector<std::size_t> pin_hinges;
+  std::vector<std::size_t> pin_hinges, pin_bodies;
   for (std::size_t h = 0; h < edges.size(); ++h) {
     const Edge& edge = edges[h];
     const std::vector<std::size_t>& faces = sides.at(edge);
@@ -220,10 +237,11 @@ HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::ve
       double a = margin[0] + static_cast<double>(k) * segment + (k > 0 ? 0.5 * p.clearance : 0.0);
       double b = margin[0] + static_cast<double>(k + 1) * segment - (k + 1 < count ? 0.5 * p.clearance : 0.0);
       if (f.origin != u) std::tie(a, b) = std::pair{length - b, length - a};
-      parts.solids.push_back(knuckle(f, p, a, b));
+      parts.solids.push_back(knuckle(f, p, a, b, !(in_place && face == faces[0])));
       parts.names.push_back("knuckle_" + std::to_string(face) + "_" + std::to_string(other) + "_" + std::to_string(k + 1));
       if (hinge_of) hinge_of->push_back(h);
       if (plate_of) plate_of->push_back(face);
+      parts.body.push_back(face);
       ++parts.knuckles;
     }
     Frame along{u, Vec3::Zero(), Vec3::Zero(), (v - u) / length};
@@ -232,6 +250,7 @@ HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::ve
     pins.push_back(pin(along, p.pin_radius, margin[0], length - margin[1]));
     pin_names.push_back("pin_" + std::to_string(faces[0]) + "_" + std::to_string(faces[1]));
     pin_hinges.push_back(h);
+    pin_bodies.push_back(faces[0]);
     ++parts.pins;
   }
   for (std::size_t k = 0; k < pins.size(); ++k) {
@@ -239,49 +258,91 @@ HingeParts build_parts(const ThickPlates& plates, const Points& x, const std::ve
     parts.names.push_back(std::move(pin_names[k]));
     if (hinge_of) hinge_of->push_back(pin_hinges[k]);
     if (plate_of) plate_of->push_back(none);
+    parts.body.push_back(pin_bodies[k]);
   }
   return parts;
 }
 
-Box box_of(const Solid& s) {
-  Box b{s.vertices.front(), s.vertices.front()};
-  for (const Vec3& v : s.vertices) b.lo = b.lo.cwiseMin(v), b.hi = b.hi.cwiseMax(v);
-  return b;
-}
+/// The parts and plates of one configuration, each with its boxes; part k
+/// (k < parts) of hinge hinge_of[k], a knuckle glued to plate own_plate[k]
+/// (none for pins); the plates after the parts.
+struct Configuration {
+  HingeParts parts;
+  std::vector<Solid> plate_solids;
+  std::vector<OrientedSolid> oriented;
+  std::vector<Box> boxes;
+  std::vector<std::size_t> hinge_of, own_plate;
+  std::vector<std::size_t> body;  ///< the plate each solid moves with
+  std::size_t n = 0;  ///< parts
 
-/// Whether two solids' surfaces cross deeper than `tolerance` (only the
-/// triangles within the other's box are tested).
-bool solids_cross(const Solid& a, const Box& box_a, const Solid& b, const Box& box_b, double tolerance) {
-  struct Near {
-    PreparedTriangle triangle;
-    Box box;
-  };
-  auto near = [](const Solid& s, const Box& other) {
-    std::vector<Near> out;
-    for (const auto& t : s.triangles) {
-      const Triangle tri{s.vertices[t[0]], s.vertices[t[1]], s.vertices[t[2]]};
-      Box tb{tri[0], tri[0]};
-      for (const Vec3& c : tri) tb.lo = tb.lo.cwiseMin(c), tb.hi = tb.hi.cwiseMax(c);
-      if (tb.overlaps(other)) out.push_back({prepare(tri), tb});
-    }
-    return out;
-  };
-  const std::vector<Near> ta = near(a, box_b), tb = near(b, box_a);
-  for (const Near& p : ta) {
-    for (const Near& q : tb) {
-      if (p.box.overlaps(q.box) && triangle_penetration(p.triangle, q.triangle) > tolerance) return true;
-    }
+  Configuration(const ThickPlates& plates, const Points& x, const std::vector<Edge>& edges,
+                const std::map<Edge, std::vector<std::size_t>>& sides, const PinLayout& layout,
+                const std::map<std::size_t, std::size_t>& plate_index) {
+    std::vector<std::size_t> face_of;
+    parts = build_parts(plates, x, edges, sides, layout, &hinge_of, &face_of, layout.in_place);
+    plate_solids = plates.solids(x);
+    n = parts.solids.size();
+    for (const std::size_t face : face_of) own_plate.push_back(face == none ? none : plate_index.at(face));
+    for (const std::size_t face : parts.body) body.push_back(plate_index.at(face));
+    for (std::size_t k = 0; k < plate_solids.size(); ++k) body.push_back(k);
+    for (const Solid& s : parts.solids) oriented.push_back(orient(s));
+    for (const Solid& s : plate_solids) oriented.push_back(orient(s));
+    for (const OrientedSolid& o : oriented) boxes.push_back(o.box);
   }
-  return false;
-}
+  Configuration(const Configuration&) = delete;  // `oriented` points into the solids
+  Configuration& operator=(const Configuration&) = delete;
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+
+  /// Calls visit(i, j, depth) for every two solids (i < j, at least one a part)
+  /// cutting into each other deeper than `tolerance`, but one hinge's own parts
+  /// (apart by design) and a knuckle with its own plate (glued); `skip(i, j)`
+  /// leaves more pairs out.
+  template <class Skip, class Visit>
+  void crossings(double tolerance, Skip&& skip, Visit&& visit) const {
+    BoxTree(boxes).for_each_pair([&](std::size_t i, std::size_t j) {
+      if (j >= n && i >= n) return true;  // two plates: the thick check's
+      if (j < n && hinge_of[i] == hinge_of[j]) return true;
+      if (j >= n && own_plate[i] == j - n) return true;
+      if (skip(i, j)) return true;
+      const double depth = solids_penetration(oriented[i], oriented[j], tolerance);
+      if (depth > tolerance) visit(i, j, depth);
+      return true;
+    });
+  }
+
+  /// Calls visit(i, j, gap) for every two solids moving with different plates
+  /// (two plates too) closer than `clearance`, but one hinge's own parts (their
+  /// clearances are the design's); `skip(i, j)` leaves more pairs out.
+  template <class Skip, class Visit>
+  void gaps(double clearance, Skip&& skip, Visit&& visit) const {
+    std::vector<Box> grown;
+    for (const Box& b : boxes) grown.push_back({(b.lo.array() - 0.5 * clearance).matrix(), (b.hi.array() + 0.5 * clearance).matrix()});
+    BoxTree(grown).for_each_pair([&](std::size_t i, std::size_t j) {
+      if (body[i] == body[j]) return true;
+      if (j < n && hinge_of[i] == hinge_of[j]) return true;
+      if (skip(i, j)) return true;
+      const double gap = solids_gap(oriented[i], oriented[j], clearance);
+      if (gap < clearance) visit(i, j, gap);
+      return true;
+    });
+  }
+};
 
 }  // namespace
 
-PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts) {
+double in_place_clearance(double thickness) {
+  const PinSizes p(thickness);
+  return p.hole_radius - p.pin_radius;
+}
+
+PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts, std::optional<InPlace> in_place) {
   const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
   std::vector<Edge> edges;
   for (const auto& [edge, faces] : sides) edges.push_back(edge);
   PinLayout layout;
+  layout.in_place = in_place.has_value();
+  std::vector<double> configurations = ts;
+  if (in_place) configurations.push_back(in_place->t);
   const double T = plates.thickness();
   const double tolerance = 1e-9 * plates.design().assembly.model_size();
   std::map<std::size_t, std::size_t> plate_index;  // face -> plate
@@ -302,40 +363,38 @@ PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts) {
   std::vector<bool> changed(edges.size(), true);
   for (layout.rounds = 0; layout.rounds < rounds; ++layout.rounds) {
     std::set<std::pair<std::size_t, int>> grow;  // (hinge, end)
-    for (const double t : ts) {
-      const Points x = plates.positions(t);
-      std::vector<std::size_t> hinge_of, plate_of;
-      const HingeParts parts = build_parts(plates, x, edges, sides, layout, &hinge_of, &plate_of);
-      const std::vector<Solid> plate_solids = plates.solids(x);
-      std::vector<Box> boxes;
-      for (const Solid& s : parts.solids) boxes.push_back(box_of(s));
-      for (const Solid& s : plate_solids) boxes.push_back(box_of(s));
-      const std::size_t n = parts.solids.size();
-      auto solid = [&](std::size_t i) -> const Solid& { return i < n ? parts.solids[i] : plate_solids[i - n]; };
+    for (std::size_t c = 0; c < configurations.size(); ++c) {
+      const Points x = plates.positions(configurations[c]);
+      const Configuration at(plates, x, edges, sides, layout, plate_index);
+      const std::size_t n = at.n;
       auto room = [&](std::size_t h) {
         const auto& m = layout.margins.at(edges[h]);
         return lengths[h] - m[0] - m[1];
       };
       // The end of part i's hinge nearer to point c.
       auto end_near = [&](std::size_t i, const Vec3& c) {
-        const Edge& e = edges[hinge_of[i]];
+        const Edge& e = edges[at.hinge_of[i]];
         const Vec3 u = x[e.first], d = x[e.second] - u;
         return (c - u).dot(d) < 0.5 * d.squaredNorm() ? 0 : 1;
       };
-      BoxTree(boxes).for_each_pair([&](std::size_t i, std::size_t j) {
-        if (i >= n && j >= n) return true;  // two plates: the thick check's
-        if (!(i < n && changed[hinge_of[i]]) && !(j < n && changed[hinge_of[j]])) return true;
-        if (i < n && j < n && hinge_of[i] == hinge_of[j]) return true;  // one hinge's own parts: apart by design
-        if (i < n && j >= n && plate_of[i] != static_cast<std::size_t>(-1) && plate_index.at(plate_of[i]) == j - n) return true;
-        if (!solids_cross(solid(i), boxes[i], solid(j), boxes[j], tolerance)) return true;
+      auto unchanged = [&](std::size_t i, std::size_t j) {
+        return !changed[at.hinge_of[i]] && !(j < n && changed[at.hinge_of[j]]);
+      };
+      auto move_back = [&](std::size_t i, std::size_t j, double) {
         // The part to move back: of two hinges, the one with more room left (the
         // other keeps its knuckles); a part cutting into a plate.
-        const Vec3 c = 0.5 * (boxes[i].lo.cwiseMax(boxes[j].lo) + boxes[i].hi.cwiseMin(boxes[j].hi));
-        std::size_t k = i < n ? i : j;
-        if (i < n && j < n && room(hinge_of[j]) > room(hinge_of[i])) k = j;
-        grow.insert({hinge_of[k], end_near(k, c)});
-        return true;
-      });
+        const Box& bi = at.boxes[i];
+        const Box& bj = at.boxes[j];
+        const Vec3 centre = 0.5 * (bi.lo.cwiseMax(bj.lo) + bi.hi.cwiseMin(bj.hi));
+        std::size_t k = i;
+        if (j < n && room(at.hinge_of[j]) > room(at.hinge_of[i])) k = j;
+        grow.insert({at.hinge_of[k], end_near(k, centre)});
+      };
+      if (c < ts.size()) {
+        at.crossings(tolerance, unchanged, move_back);
+      } else {  // printed in place at this t: parts of different plates the clearance apart (two plates: said by pin_gaps)
+        at.gaps(in_place->clearance, [&](std::size_t i, std::size_t j) { return i >= n || unchanged(i, j); }, move_back);
+      }
     }
     if (grow.empty()) break;
     std::fill(changed.begin(), changed.end(), false);
@@ -356,7 +415,69 @@ HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x, const Pin
   const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
   std::vector<Edge> edges;
   for (const auto& [edge, faces] : sides) edges.push_back(edge);
-  return build_parts(plates, x, edges, sides, layout, nullptr, nullptr);
+  return build_parts(plates, x, edges, sides, layout, nullptr, nullptr, layout.in_place);
+}
+
+std::vector<PinCrossing> pin_gaps(const ThickPlates& plates, const PinLayout& layout, double t, double clearance) {
+  const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
+  std::vector<Edge> edges;
+  for (const auto& [edge, faces] : sides) edges.push_back(edge);
+  std::map<std::size_t, std::size_t> plate_index;
+  for (std::size_t k = 0; k < plates.plates(); ++k) plate_index[plates.panel(k)] = k;
+  const Configuration at(plates, plates.positions(t), edges, sides, layout, plate_index);
+  auto name = [&](std::size_t i) { return i < at.n ? at.parts.names[i] : "plate_" + std::to_string(plates.panel(i - at.n)); };
+  std::vector<PinCrossing> found;
+  at.gaps(clearance, [](std::size_t, std::size_t) { return false; },
+          [&](std::size_t i, std::size_t j, double gap) { found.push_back({name(i), name(j), t, gap}); });
+  return found;
+}
+
+InPlaceBodies in_place_bodies(const ThickPlates& plates, std::vector<Solid> plate_solids, const HingeParts& parts) {
+  InPlaceBodies out;
+  std::map<std::size_t, std::size_t> plate_index;
+  for (std::size_t k = 0; k < plates.plates(); ++k) {
+    plate_index[plates.panel(k)] = k;
+    out.names.push_back("body_" + std::to_string(plates.panel(k)));
+  }
+  out.solids = std::move(plate_solids);
+  out.shells.assign(out.solids.size(), 1);
+  for (std::size_t k = 0; k < parts.solids.size(); ++k) {
+    const std::size_t b = plate_index.at(parts.body[k]);
+    Solid& into = out.solids[b];
+    const std::size_t base = into.vertices.size();
+    into.vertices.insert(into.vertices.end(), parts.solids[k].vertices.begin(), parts.solids[k].vertices.end());
+    for (const auto& tri : parts.solids[k].triangles) into.triangles.push_back({base + tri[0], base + tri[1], base + tri[2]});
+    ++out.shells[b];
+  }
+  return out;
+}
+
+std::vector<double> pin_configurations(double t_star, double lower, double upper, std::size_t samples) {
+  std::vector<double> ts{t_star};
+  for (std::size_t k = 0; k < samples; ++k) {
+    const double f = samples == 1 ? 0.0 : static_cast<double>(k) / static_cast<double>(samples - 1);
+    ts.push_back(k + 1 == samples ? upper : lower + f * (upper - lower));
+  }
+  return ts;
+}
+
+std::vector<PinCrossing> pin_crossings(const ThickPlates& plates, const PinLayout& layout, const std::vector<double>& ts) {
+  const std::map<Edge, std::vector<std::size_t>> sides = hinge_sides(plates);
+  std::vector<Edge> edges;
+  for (const auto& [edge, faces] : sides) edges.push_back(edge);
+  std::map<std::size_t, std::size_t> plate_index;
+  for (std::size_t k = 0; k < plates.plates(); ++k) plate_index[plates.panel(k)] = k;
+  const double tolerance = 1e-9 * plates.design().assembly.model_size();
+  std::vector<PinCrossing> found;
+  for (const double t : ts) {
+    const Configuration at(plates, plates.positions(t), edges, sides, layout, plate_index);
+    auto name = [&](std::size_t i) {
+      return i < at.n ? at.parts.names[i] : "plate_" + std::to_string(plates.panel(i - at.n));
+    };
+    at.crossings(tolerance, [](std::size_t, std::size_t) { return false; },
+                 [&](std::size_t i, std::size_t j, double depth) { found.push_back({name(i), name(j), t, depth}); });
+  }
+  return found;
 }
 
 }  // namespace phedra

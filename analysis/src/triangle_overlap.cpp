@@ -34,7 +34,81 @@ std::pair<double, double> section(const Triangle& q, const std::array<double, 3>
   return {lo, hi};
 }
 
+/// The point of triangle abc nearest to p (Ericson 5.1.5, by Voronoi regions).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + d1 / (d1 - d3) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + d2 / (d2 - d6) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b);
+  const double denom = va + vb + vc;
+  if (!(denom > 0.0)) {  // no area: the nearest of its edges
+    auto on_segment = [&](const Vec3& u, const Vec3& v) {
+      const Vec3 d = v - u;
+      const double l = d.squaredNorm();
+      return l > 0.0 ? Vec3(u + std::clamp((p - u).dot(d) / l, 0.0, 1.0) * d) : u;
+    };
+    Vec3 best = on_segment(a, b);
+    for (const Vec3& x : {on_segment(b, c), on_segment(c, a)}) {
+      if ((x - p).squaredNorm() < (best - p).squaredNorm()) best = x;
+    }
+    return best;
+  }
+  return a + (vb / denom) * ab + (vc / denom) * ac;
+}
+
+/// The squared distance between segments p1q1 and p2q2 (Ericson 5.1.9).
+double segments_distance2(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
+  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a <= 0.0 && e <= 0.0) return r.squaredNorm();
+  if (a <= 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 0.0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
+}
+
 }  // namespace
+
+double triangle_distance(const PreparedTriangle& pt, const PreparedTriangle& qt) {
+  if (triangle_penetration(pt, qt) > 0.0) return 0.0;  // crossing (touching gives 0 below)
+  const Triangle& p = pt.corners;
+  const Triangle& q = qt.corners;
+  double best = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    best = std::min(best, (closest_on_triangle(p[k], q[0], q[1], q[2]) - p[k]).squaredNorm());
+    best = std::min(best, (closest_on_triangle(q[k], p[0], p[1], p[2]) - q[k]).squaredNorm());
+    for (int l = 0; l < 3; ++l) best = std::min(best, segments_distance2(p[k], p[(k + 1) % 3], q[l], q[(l + 1) % 3]));
+  }
+  return std::sqrt(best);
+}
 
 PreparedTriangle prepare(const Triangle& t) {
   PreparedTriangle p;

@@ -137,7 +137,17 @@ std::string stored_zip(const std::vector<std::pair<std::string, std::string>>& e
   return out;
 }
 
-std::string three_mf(const std::vector<Solid>& solids, const std::vector<std::string>& names, const std::string& comment) {
+std::string three_mf(const std::vector<Solid>& solids, const std::vector<std::string>& names, const std::string& comment,
+                     const std::string& one_object) {
+  if (!one_object.empty()) {  // one object, one mesh of every solid's shells: a slicer places it whole
+    Solid all;
+    for (const Solid& solid : solids) {
+      const std::size_t base = all.vertices.size();
+      all.vertices.insert(all.vertices.end(), solid.vertices.begin(), solid.vertices.end());
+      for (const auto& t : solid.triangles) all.triangles.push_back({base + t[0], base + t[1], base + t[2]});
+    }
+    return three_mf({all}, {one_object}, comment, "");
+  }
   const std::string types =
       "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       "<Types xmlns=\"http://schemas.openxmlformats.org/package/2006/content-types\">"
@@ -158,12 +168,12 @@ bool is_solid_format(const std::string& extension) {
 }
 
 std::string solid_bytes(const std::vector<Solid>& solids, const std::vector<std::string>& names, const std::string& extension,
-                        const std::string& comment) {
+                        const std::string& comment, const std::string& one_object) {
   require_finite(solids);
   if (names.size() != solids.size()) throw Error(ExitCode::internal, "solid_bytes: one name a solid");
   if (extension == ".stl") return stl(solids, comment);
   if (extension == ".obj") return obj(solids, names, comment);
-  if (extension == ".3mf") return three_mf(solids, names, comment);
+  if (extension == ".3mf") return three_mf(solids, names, comment, one_object);
   throw InvalidInputError("output", "thick plates are written as .stl, .obj or .3mf (not \"" + extension + "\")");
 }
 

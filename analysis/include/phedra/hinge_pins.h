@@ -26,6 +26,7 @@
 
 #include <array>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -59,8 +60,9 @@ PrinterProfile sla_printer();
 /// PinSizes at least what it asks (pin 0.4 T >= pin_mm, clearance 0.08 T >=
 /// clearance_mm, the knuckles' gap 0.08 T >= gap_mm, the knuckle's wall 0.25 T
 /// and the leaf 0.3 T >= smallest_feature_mm and >= 2 nozzle_mm, the pin's play
-/// in its hole 0.05 T >= half the clearance); `binding` names the size that sets it.
-double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding = nullptr);
+/// in its hole 0.05 T >= half the clearance, or the whole of it printed in
+/// place); `binding` names the size that sets it.
+double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding = nullptr, bool in_place = false);
 
 /// The hinge gap pin hinges need at thickness T: both plates clear of a knuckle
 /// turning about the hinge line, with the clearance.
@@ -69,6 +71,9 @@ double pin_hinge_gap(double thickness);
 struct HingeParts {
   std::vector<Solid> solids;       ///< knuckles, then pins
   std::vector<std::string> names;  ///< knuckle_<a>_<b>_<k> (of plate panel a, on its hinge with b), pin_<a>_<b>
+  /// The panel whose plate each part moves with: a knuckle's own, a pin's the
+  /// first (a); printed in place, the pin is one with that plate's knuckles.
+  std::vector<std::size_t> body;
   std::size_t hinges = 0, knuckles = 0, pins = 0;
 };
 
@@ -76,19 +81,67 @@ struct HingeParts {
 /// the hinge (model units), at first a tenth of its length but at most T, grown
 /// (by half of itself, at least T/2, up to 16 rounds) at every end where a part
 /// of the hinge cuts into a part of another hinge or into a plate other than its
-/// own at one of the configurations `ts` (t* and the thick interval's ends:
-/// hinges that meet at a vertex then keep their knuckles apart). A hinge whose
+/// own at one of the configurations `ts` (pin_configurations: t* and the thick
+/// interval; hinges that meet at a vertex then keep their knuckles apart). A hinge whose
 /// margins leave no room has no knuckles and no pin.
 struct PinLayout {
   std::map<std::pair<std::size_t, std::size_t>, std::array<double, 2>> margins;  ///< mesh edge (lower vertex first) -> {at it, at the other}
+  bool in_place = false;             ///< printed in place (InPlace): a pin is one with its first plate's knuckles
   std::size_t rounds = 0;            ///< rounds of growing the margins taken
   std::size_t without_knuckles = 0;  ///< hinges left without parts
 };
-PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts);
+/// Printed in place (`generate --print-in-place`): every plate, its knuckles
+/// and the pins that are one with them (HingeParts::body) make one body; the
+/// bodies are printed together at t, each part at least `clearance` from every
+/// part and plate of another body there (the layout grows margins for that too).
+struct InPlace {
+  double t = 0.0;
+  double clearance = 0.0;
+};
+/// The clearance of parts printed in place: the pin's play in its hole, 0.05 T
+/// (the least of the design's clearances between moving parts).
+double in_place_clearance(double thickness);
+PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts, std::optional<InPlace> in_place = std::nullopt);
+
+/// The configurations pin hinges are laid out and checked at: t*, then
+/// `samples` evenly over the thick interval [lower, upper], its ends included
+/// (the check takes twice as many less one: the layout's and those half way).
+std::vector<double> pin_configurations(double t_star, double lower, double upper, std::size_t samples);
+/// The layout's samples (generate adds the t it writes).
+constexpr std::size_t pin_layout_samples = 9;
+
+/// Two parts, or a part and a plate, cutting into each other (deeper than 1e-9
+/// of the model size) at t: named as generate names them (knuckle_<a>_<b>_<k>,
+/// pin_<a>_<b>, plate_<panel>).
+struct PinCrossing {
+  std::string a, b;
+  double t = 0.0, depth = 0.0;
+};
+/// Every crossing of the parts of `layout` (knuckles, their leaves and pins as
+/// the solids generate writes) with each other and with the plates, at each of
+/// `ts`; a knuckle and the plate its leaf is glued to, and one hinge's own parts,
+/// touch by design and are left out.
+std::vector<PinCrossing> pin_crossings(const ThickPlates& plates, const PinLayout& layout, const std::vector<double>& ts);
 
 /// The knuckles and pins of every hinge of `plates` at the mesh positions x
 /// (ThickPlates::positions), with the layout's margins. Every solid is closed
-/// and outward-oriented.
+/// and outward-oriented. In place, the knuckles of a pin's first plate have no
+/// hole (the pin is one with them) and the other plate's turn on it.
 HingeParts pin_hinge_parts(const ThickPlates& plates, const Points& x, const PinLayout& layout);
+
+/// Solids of different bodies (plates included) closer than `clearance` at t,
+/// printed in place with `layout` (depth: how far apart, 0 touching); one
+/// hinge's own parts aside (their clearances are the design's).
+std::vector<PinCrossing> pin_gaps(const ThickPlates& plates, const PinLayout& layout, double t, double clearance);
+
+/// The bodies printed in place: plate k with every part that moves with it
+/// (HingeParts::body), one solid of several closed shells that touch or
+/// overlap (a slicer and 3MF's fill rule take their union), named body_<panel>.
+struct InPlaceBodies {
+  std::vector<Solid> solids;
+  std::vector<std::string> names;
+  std::vector<std::size_t> shells;  ///< closed shells in each
+};
+InPlaceBodies in_place_bodies(const ThickPlates& plates, std::vector<Solid> plate_solids, const HingeParts& parts);
 
 }  // namespace phedra

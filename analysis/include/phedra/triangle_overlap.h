@@ -32,6 +32,12 @@ PreparedTriangle prepare(const Triangle& t);
 /// triangle_penetration(p.corners, q.corners), from the prepared data.
 double triangle_penetration(const PreparedTriangle& p, const PreparedTriangle& q);
 
+/// The distance between two triangles (their closest points), 0 when they
+/// touch or cross: the least of each corner's distance to the other triangle
+/// and each pair of edges' (Ericson, Real-Time Collision Detection, 5.1.5 and
+/// 5.1.9). Parts printed in place must keep a clearance: this measures it.
+double triangle_distance(const PreparedTriangle& p, const PreparedTriangle& q);
+
 /// triangle_penetration(p, q) > tolerance.
 inline bool triangles_penetrate(const Triangle& p, const Triangle& q, double tolerance) {
   return triangle_penetration(p, q) > tolerance;
