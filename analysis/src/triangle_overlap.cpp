@@ -34,7 +34,36 @@ std::pair<double, double> section(const Triangle& q, const std::array<double, 3>
   return {lo, hi};
 }
 
-/// The point of triangle abc nearest to p (Ericson 5.1.5, by Voronoi regions).
+/// The squared distance between segments p1q1 and p2q2 (Ericson 5.1.9).
+double segments_distance2(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
+  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0.0, t = 0.0;
+  if (a <= 0.0 && e <= 0.0) return r.squaredNorm();
+  if (a <= 0.0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    const double c = d1.dot(r);
+    if (e <= 0.0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      const double b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0.0) {
+        t = 0.0;
+        s = std::clamp(-c / a, 0.0, 1.0);
+      } else if (t > 1.0) {
+        t = 1.0;
+        s = std::clamp((b - c) / a, 0.0, 1.0);
+      }
+    }
+  }
+  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
+}
+
+}  // namespace
+
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = ab.dot(ap), d2 = ac.dot(ap);
@@ -66,36 +95,6 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   }
   return a + (vb / denom) * ab + (vc / denom) * ac;
 }
-
-/// The squared distance between segments p1q1 and p2q2 (Ericson 5.1.9).
-double segments_distance2(const Vec3& p1, const Vec3& q1, const Vec3& p2, const Vec3& q2) {
-  const Vec3 d1 = q1 - p1, d2 = q2 - p2, r = p1 - p2;
-  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
-  double s = 0.0, t = 0.0;
-  if (a <= 0.0 && e <= 0.0) return r.squaredNorm();
-  if (a <= 0.0) {
-    t = std::clamp(f / e, 0.0, 1.0);
-  } else {
-    const double c = d1.dot(r);
-    if (e <= 0.0) {
-      s = std::clamp(-c / a, 0.0, 1.0);
-    } else {
-      const double b = d1.dot(d2), denom = a * e - b * b;
-      s = denom > 0.0 ? std::clamp((b * f - c * e) / denom, 0.0, 1.0) : 0.0;
-      t = (b * s + f) / e;
-      if (t < 0.0) {
-        t = 0.0;
-        s = std::clamp(-c / a, 0.0, 1.0);
-      } else if (t > 1.0) {
-        t = 1.0;
-        s = std::clamp((b - c) / a, 0.0, 1.0);
-      }
-    }
-  }
-  return ((p1 + s * d1) - (p2 + t * d2)).squaredNorm();
-}
-
-}  // namespace
 
 double triangle_distance(const PreparedTriangle& pt, const PreparedTriangle& qt) {
   if (triangle_penetration(pt, qt) > 0.0) return 0.0;  // crossing (touching gives 0 below)

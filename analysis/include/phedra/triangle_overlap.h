@@ -32,6 +32,10 @@ PreparedTriangle prepare(const Triangle& t);
 /// triangle_penetration(p.corners, q.corners), from the prepared data.
 double triangle_penetration(const PreparedTriangle& p, const PreparedTriangle& q);
 
+/// The point of triangle abc nearest to p (Ericson, Real-Time Collision
+/// Detection, 5.1.5, by Voronoi regions; a triangle without area: its nearest edge).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
 /// The distance between two triangles (their closest points), 0 when they
 /// touch or cross: the least of each corner's distance to the other triangle
 /// and each pair of edges' (Ericson, Real-Time Collision Detection, 5.1.5 and
