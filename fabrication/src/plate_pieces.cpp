@@ -139,6 +139,33 @@ void cut_plates(std::vector<Piece>& pieces, const ThickPlates& plates, double sc
   }
 }
 
+namespace {
+
+/// `text` broken at its spaces into lines no wider than `room` at capital
+/// height h (a word longer than that alone on its line), each line after the
+/// first starting with `indent`.
+std::vector<std::string> wrapped(const std::string& text, double h, double room, const std::string& indent) {
+  std::vector<std::string> lines;
+  std::string line;
+  std::size_t from = 0;
+  while (from < text.size()) {
+    std::size_t space = text.find(' ', from + 1);
+    if (space == std::string::npos) space = text.size();
+    const std::string word = text.substr(from, space - from);
+    if (!line.empty() && line != indent && text_width(line + word, h) > room) {
+      lines.push_back(line);
+      line = indent + word.substr(word.front() == ' ' ? 1 : 0);
+    } else {
+      line += word;
+    }
+    from = space;
+  }
+  lines.push_back(line);
+  return lines;
+}
+
+}  // namespace
+
 std::vector<SheetPage> assembly_pages(const CutSheets& s) {
   // Seam -> the pieces on its sides.
   std::map<std::size_t, std::vector<std::size_t>> sides;
@@ -188,22 +215,7 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
                        (parts.empty() ? "start here" : s.thick ? "hinge to " : "glue to ");
     for (std::size_t k = 0; k < parts.size(); ++k) text += (k ? ", " : "") + parts[k];
     // Wrapped at spaces (after the piece's number) onto indented lines.
-    const double room = s.page.x() - 2.0 * m;
-    std::string line;
-    std::size_t from = 0;
-    while (from < text.size()) {
-      std::size_t space = text.find(' ', from + 1);
-      if (space == std::string::npos) space = text.size();
-      const std::string word = text.substr(from, space - from);
-      if (!line.empty() && line != "     " && from > 0 && text_width(line + word, h) > room) {
-        steps.push_back(line);
-        line = "     " + word.substr(word.front() == ' ' ? 1 : 0);
-      } else {
-        line += word;
-      }
-      from = space;
-    }
-    steps.push_back(line);
+    for (std::string& line : wrapped(text, h, s.page.x() - 2.0 * m, "     ")) steps.push_back(std::move(line));
   }
   double column_width = 40.0;
   for (const std::string& step : steps) column_width = std::max(column_width, text_width(step, h) + 5.0);
@@ -216,24 +228,30 @@ std::vector<SheetPage> assembly_pages(const CutSheets& s) {
     double y = top - 11.0;
     if (pages.empty()) {
       const std::string face = s.thick && s.thick->side == PlateSide::back ? "printed" : "unprinted";
-      const std::vector<std::string> words =
+      // Paragraphs, each wrapped at the page's width.
+      const std::vector<std::string> paragraphs =
           s.thick ? std::vector<std::string>{
                         "Plates " + sheet_number(s.thickness_mm) + " mm thick, " + std::to_string(s.pieces.size()) +
                             " pieces; cut on the solid lines (kerf " + sheet_number(s.kerf_mm) + " mm allowed for).",
-                        "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: hinges go on the",
-                        face + " face (the panels' side), across the gap between two plates, centred on the hinge line. S3 meets S3.",
+                        "Lay each plate with the side shown on the sheet up. The dashed purple lines are the hinge lines: "
+                        "hinges go on the " + face + " face (the panels' side), across the gap between two plates, centred "
+                        "on the hinge line. S3 meets S3.",
                         "Join the pieces in this order (a piece: its number, its panel, its page; then the earlier pieces it is hinged to):"}
                   : std::vector<std::string>{
-                        "Card, " + std::to_string(s.pieces.size()) + " pieces: cut on the solid lines, fold on the others (the key on sheet 1",
-                        "shows mountain and valley folds as seen on the printed side), then glue each seam (S3 meets S3):",
-                        "its tab under the other side's edge (a seam with no tab: tape). The views after this list show where",
-                        "each piece goes. Join the pieces in this order (a piece: its number, its panels, its page; then the",
-                        "earlier pieces it is glued to):"};
-      for (const std::string& text : words) {
-        add_text(page, text, Vec2(m, y), h, TextRole::note);
-        y -= pitch + 0.6;
+                        "Card, " + std::to_string(s.pieces.size()) + " pieces: cut on the solid lines, fold on the others "
+                        "(the key on sheet 1 shows mountain and valley folds as seen on the printed side), then glue each "
+                        "seam (S3 meets S3): its tab under the other side's edge (a seam with no tab: tape). The views after "
+                        "this list show where each piece goes.",
+                        "Join the pieces in this order (a piece: its number, its panels, its page; then the earlier pieces it "
+                        "is glued to):"};
+      for (const std::string& paragraph : paragraphs) {
+        for (const std::string& line : wrapped(paragraph, h, s.page.x() - 2.0 * m, "")) {
+          add_text(page, line, Vec2(m, y), h, TextRole::note);
+          y -= pitch + 0.6;
+        }
+        y -= 1.0;  // between paragraphs
       }
-      y -= 2.0;
+      y -= 1.0;
     }
     const double first_y = y;
     const std::size_t rows = static_cast<std::size_t>(std::max(1.0, std::floor((first_y - m) / pitch)));

@@ -6,7 +6,7 @@
 #include "phedra/number_format.h"
 #include "phedra/xml_text.h"
 
-#include <cctype>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -108,17 +108,45 @@ std::string sheet_number(double x) {
 
 double font_size_for_capitals(double h) { return h / 0.72; }
 
-double text_width(const std::string& text, double height) {
-  double w = 0.0;
-  for (char c : text) {
+namespace {
+
+// DejaVu Sans's advance widths (font units, 2048 an em) of the printable ASCII
+// characters, ' ' to '~', regular and bold: read from the font files
+// (fonts-dejavu-core, hmtx table). Pages name DejaVu Sans first, and the PDF
+// and PNG renderer draws with it.
+constexpr std::array<unsigned short, 95> dejavu_regular{
+    651,  821,  942,  1716, 1303, 1946, 1597, 563,  799,  799,  1024, 1716, 651,  739,  651,  690,  1303, 1303, 1303,
+    1303, 1303, 1303, 1303, 1303, 1303, 1303, 690,  690,  1716, 1716, 1716, 1087, 2048, 1401, 1405, 1430, 1577, 1294,
+    1178, 1587, 1540, 604,  604,  1343, 1141, 1767, 1532, 1612, 1235, 1612, 1423, 1300, 1251, 1499, 1401, 2025, 1403,
+    1251, 1403, 799,  690,  799,  1716, 1024, 1024, 1255, 1300, 1126, 1300, 1260, 721,  1300, 1298, 569,  569,  1186,
+    569,  1995, 1298, 1253, 1300, 1300, 842,  1067, 803,  1298, 1212, 1675, 1212, 1212, 1075, 1303, 690,  1303, 1716};
+constexpr std::array<unsigned short, 95> dejavu_bold{
+    713,  934,  1067, 1716, 1425, 2052, 1786, 627,  936,  936,  1071, 1716, 778,  850,  778,  748,  1425, 1425, 1425,
+    1425, 1425, 1425, 1425, 1425, 1425, 1425, 819,  819,  1716, 1716, 1716, 1188, 2048, 1585, 1561, 1503, 1700, 1399,
+    1399, 1681, 1714, 762,  762,  1587, 1305, 2038, 1714, 1741, 1501, 1741, 1577, 1475, 1397, 1663, 1585, 2259, 1579,
+    1483, 1485, 936,  748,  936,  1716, 1024, 1024, 1382, 1466, 1214, 1466, 1389, 891,  1466, 1458, 702,  702,  1362,
+    702,  2134, 1458, 1407, 1466, 1466, 1010, 1219, 979,  1458, 1335, 1892, 1321, 1335, 1192, 1458, 748,  1458, 1716};
+
+}  // namespace
+
+double text_width(const std::string& text, double height, bool bold) {
+  const auto& widths = bold ? dejavu_bold : dejavu_regular;
+  double units = 0.0;
+  for (const char c : text) {
     const unsigned char u = static_cast<unsigned char>(c);
-    w += std::isdigit(u) || std::isupper(u) ? 0.88 : std::islower(u) ? 0.78 : c == ' ' ? 0.45 : 0.6;
+    if (u >= 0x20 && u < 0x7f) {
+      units += widths[u - 0x20];
+    } else if (u >= 0xc0) {  // a character beyond ASCII (UTF-8's first byte; the rest add nothing): a digit's width
+      units += widths['0' - 0x20];
+    }
   }
-  return w * height;
+  // Font units to the em, the em to capital heights (font_size_for_capitals).
+  return units / 2048.0 * font_size_for_capitals(height);
 }
 
 void add_text(SheetPage& page, const std::string& s, Vec2 at, double h, TextRole role) {
-  page.texts.push_back(SheetText{s, Box2{at, Vec2::UnitX(), text_width(s, h), h}, role});
+  const bool bold = role == TextRole::title || role == TextRole::warning;
+  page.texts.push_back(SheetText{s, Box2{at, Vec2::UnitX(), text_width(s, h, bold), h}, role});
 }
 
 void Legend::room(double width) {
@@ -159,7 +187,7 @@ void Legend::note(const std::string& what) {
 }
 
 void Legend::warning(const std::string& what) {
-  const double width = 1.12 * text_width(what, h_);  // bold DejaVu: about 12 % wider than the regular
+  const double width = text_width(what, h_, true);
   room(width);
   page_.texts.push_back(SheetText{what, Box2{Vec2(x_, row_), Vec2::UnitX(), width, h_}, TextRole::warning});
   x_ += width + 6.0;

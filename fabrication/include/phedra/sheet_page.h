@@ -51,8 +51,10 @@ struct SheetPage {
 /// Font size giving capital height h (DejaVu Sans and Helvetica: capitals 0.72 em).
 double font_size_for_capitals(double h);
 
-/// Estimated advance of `text` at capital height `height` (the renderers stretch it to exactly this).
-double text_width(const std::string& text, double height);
+/// The advance of `text` at capital height `height` in DejaVu Sans (bold: its
+/// bold face), from the font's widths (the renderers stretch it to exactly
+/// this: with the font, not at all); a character beyond ASCII as wide as a digit.
+double text_width(const std::string& text, double height, bool bold = false);
 
 /// A left-aligned text of capital height h with its baseline at `at`.
 void add_text(SheetPage& page, const std::string& text, Vec2 at, double h, TextRole role = TextRole::legend);
