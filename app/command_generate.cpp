@@ -326,8 +326,11 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
                 << " from each hinge line; knuckles kept clear of the hinges they meet at a vertex and of the plates at t* "
                    "and over the thick interval\n";
     if (in_place) {
-      context.out << "printed in place: " << solids.size() << " bodies (body_<panel>: a plate, its knuckles and the pins "
-                  << "one with them; " << shells << " closed shells that touch or overlap, joined by the slicer), every part "
+      context.out << "printed in place: " << solids.size() << " bodies (a plate, its knuckles and the pins one with "
+                  << "them; " << shells << " closed shells that touch or overlap, joined by the slicer; "
+                  << (ext == ".obj" ? std::string("OBJ objects body_<panel>")
+                                    : "one object" + (ext == ".3mf" ? " \"" + design.assembly.name() + "_in_place\"" : std::string()))
+                  << "), every part "
                   << "of one at least " << format_human(s * in_place_clearance(report.thickness)) << unit
                   << " from every part of another at t = " << format_human(t)
                   << " (the pin's play in its hole); print with supports, and free every hinge before folding\n";
@@ -339,8 +342,9 @@ void write_solids(Context& context, const Design& design, const GenerateOptions&
       }
     }
     if (layout.without_knuckles > 0) {
-      context.out << "note: " << layout.without_knuckles << " hinges left without knuckles (too short for knuckles clear "
-                  << "of those of the hinges they meet at a vertex): tape or glue them, or thinner plates\n";
+      context.out << "note: " << layout.without_knuckles << (layout.without_knuckles == 1 ? " hinge" : " hinges")
+                  << " left without knuckles (too short for knuckles clear of the other hinges' parts and of the plates"
+                  << (in_place ? ", by the clearance" : "") << "): tape or glue them, or thinner plates\n";
     }
   }
   if (report.at_t_star) {

@@ -61,7 +61,8 @@ void add_thickness_options(CLI::App* command, ThicknessOptions& o, const std::st
                       "With a thickness: how the plates are hinged: none (plates meet at the hinge lines), gap (a gap at "
                       "every hinge: --hinge-gap, or a quarter of the thickness), or pin (knuckles on every hinge line, "
                       "alternating between its plates, a pin through them; the plates cut back to clear them: solids "
-                      "from generate; docs/design.md)")
+                      "from generate; check fails, exit 1, when two parts or a part and a plate cross over the thick "
+                      "interval; docs/design.md)")
       ->check(CLI::IsMember({"none", "gap", "pin"}))
       ->capture_default_str();
   command->add_option("--printer", o.printer,

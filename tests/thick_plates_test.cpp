@@ -350,7 +350,8 @@ TEST_CASE("thick plates: pin hinges: knuckles on the hinge lines, alternating, c
   CHECK_THAT(run.out, Contains("pin hinges: " + std::to_string(parts.hinges) + " hinges, " + std::to_string(parts.knuckles) + " knuckles"));
   CHECK_THAT(run.out, Contains(std::to_string(parts.pins) + " pins"));
   if (layout.without_knuckles > 0) {
-    CHECK_THAT(run.out, Contains(std::to_string(layout.without_knuckles) + " hinges left without knuckles"));
+    CHECK_THAT(run.out, Contains(std::to_string(layout.without_knuckles) + (layout.without_knuckles == 1 ? " hinge" : " hinges") +
+                                 " left without knuckles"));
   }
   // check --hinge pin says the same layout: how many hinges keep their knuckles (text and JSON).
   const test::Run said = test::phedra_cli({"check", presets + "/parallelogram-tube.json", "--thickness", "0.08", "--hinge", "pin"});

@@ -138,7 +138,7 @@ double thinnest_printable_mm(const PrinterProfile& printer, std::string* binding
        "a pin's play of " + mm(0.5 * printer.clearance_mm) + " mm in its hole is 0.05 T"},
       // Printed in place, the pin and the knuckles turning on it are printed apart by its play.
       {in_place ? printer.clearance_mm / (unit.hole_radius - unit.pin_radius) : 0.0,
-       "a pin printed in place " + mm(printer.clearance_mm) + " mm clear of its hole: 0.05 T"},
+       "a pin's play of " + mm(printer.clearance_mm) + " mm in its hole, printed in place, is 0.05 T"},
   };
   double t = 0.0;
   for (const auto& [need, why] : needs) {

@@ -61,7 +61,7 @@ std::string stl(const std::vector<Solid>& solids, const std::string& comment) {
 }
 
 std::string obj(const std::vector<Solid>& solids, const std::vector<std::string>& names, const std::string& comment) {
-  std::string out = "# phedra thick plates: one closed object a plate\n";
+  std::string out = "# phedra thick plates: one object a plate, hinge part or body, each of closed shells\n";
   if (!comment.empty()) out += "# " + comment + "\n";
   std::size_t base = 1;
   for (std::size_t k = 0; k < solids.size(); ++k) {
