@@ -12,6 +12,7 @@
 #include "support/cli_run.h"
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 #include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
+#include "../mechanics/src/fold_kernel.h"   // FoldKernel (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 
@@ -229,6 +230,61 @@ TEST_CASE("the fold angles' atan2 in bulk equals std::atan2 in every quadrant an
       CHECK(std::abs(out[h] - exact) <= 4 * std::numeric_limits<double>::epsilon() * std::max(1.0, std::abs(exact)));
     }
   }
+}
+
+TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and its gradient times the rates", "[mechanics]") {
+  // The kernel takes each fold's angle from its panels' unit normals (planar at
+  // every t): the same number as hinge_angle's formula from the wing nodes, and
+  // its rate the same as hinge_angle_gradient . dX/dt, on every shipped preset
+  // and the array with T-junctions, both panel models, at and away from the model's t.
+  std::vector<std::filesystem::path> files;
+  for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
+    if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") files.push_back(entry.path());
+  }
+  std::size_t folds = 0;
+  for (const auto& file : files) {
+    const Design design = load_design(file);
+    const auto& interval = design.assembly.flexion_interval();
+    auto at = [&](double f) { return interval.lower.t + f * (interval.upper.t - interval.lower.t); };
+    for (const PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
+      StiffnessOptions options;
+      options.panels = panels;
+      if (panels == PanelModel::n5b8 && !n5b8_models(design, at(0.4))) continue;
+      const BarHingeModel model(design, design.assembly.evaluate(at(0.4)), options);
+      const FoldKernel kernel(model);
+      for (double f : {0.4, 0.02, 0.7, 0.98}) {
+        INFO(file.filename().string() << " " << to_string(panels) << " at fraction " << f);
+        AssemblyConfiguration c;
+        std::vector<Points> rates;
+        REQUIRE(design.assembly.evaluate_rate(at(f), c, rates));
+        Points x, v, corners, corner_rates;
+        model.node_positions(c, x);
+        model.node_rates(rates, v);
+        model.mesh().nodes(c.members, corners);
+        model.mesh().nodes(rates, corner_rates);
+        const std::size_t n = kernel.size();
+        std::vector<double> theta(n), rate(n), y(n), xs(n), frames;
+        kernel.angles(corners, &corner_rates, theta.data(), rate.data(), y.data(), xs.data(), frames);
+        double speed = 0.0;
+        for (const Vec3& w : v) speed = std::max(speed, w.norm());
+        for (std::size_t h = 0; h < n; ++h) {
+          const Hinge& hinge = model.hinges()[h];
+          const HingeNodes nodes = hinge_nodes(hinge, x);
+          const double merlin = hinge_angle(nodes);
+          CHECK(std::abs(std::remainder(theta[h] - merlin, 2 * pi)) <= 1e-11);
+          const std::array<Vec3, 4> g = hinge_angle_gradient(nodes);
+          double exact = 0.0;
+          for (int q = 0; q < 4; ++q) exact += g[q].dot(v[hinge.nodes[q]]);
+          // Rounding: the gradient's size (1 / the wing's distance) times the nodes' speed.
+          double scale = 0.0;
+          for (int q = 0; q < 4; ++q) scale = std::max(scale, g[q].norm());
+          CHECK(std::abs(rate[h] - exact) <= 1e-10 * scale * speed);
+        }
+        folds += n;
+      }
+    }
+  }
+  CHECK(folds > 5000);
 }
 
 TEST_CASE("the mobility's SVD (LAPACK): A V = U S, V orthonormal and complete, rank-deficient and empty shapes", "[mechanics]") {

@@ -293,10 +293,10 @@ TEST_CASE("pin hinges printed in place: a body a plate, every part of one the pi
     for (const Vec3& v : solids[k].vertices) b.lo = b.lo.cwiseMin(v), b.hi = b.hi.cwiseMax(v);
     boxes.push_back(grown(b));
     for (const auto& tri : solids[k].triangles) {
-      const Triangle t{solids[k].vertices[tri[0]], solids[k].vertices[tri[1]], solids[k].vertices[tri[2]]};
-      Box tb{t[0], t[0]};
-      for (const Vec3& c : t) tb.lo = tb.lo.cwiseMin(c), tb.hi = tb.hi.cwiseMax(c);
-      triangles[k].push_back({prepare(t), grown(tb)});
+      const Triangle corners{solids[k].vertices[tri[0]], solids[k].vertices[tri[1]], solids[k].vertices[tri[2]]};
+      Box tb{corners[0], corners[0]};
+      for (const Vec3& c : corners) tb.lo = tb.lo.cwiseMin(c), tb.hi = tb.hi.cwiseMax(c);
+      triangles[k].push_back({prepare(corners), grown(tb)});
     }
   }
   double nearest = std::numeric_limits<double>::infinity();

@@ -1,5 +1,6 @@
 #include "phedra/homogenized_strain.h"
 
+#include "phedra/cpu_clones.h"
 #include "phedra/errors.h"
 
 #include <Eigen/Eigenvalues>
@@ -100,7 +101,7 @@ HomogenizedStrain::HomogenizedStrain(const Assembly& assembly, MetricsAxes axes)
 
 void HomogenizedStrain::evaluate(double t) const { assembly_.evaluate(t, configuration_); }
 
-Mat3 HomogenizedStrain::moment(const std::vector<Points>& members) const {
+PHEDRA_CPU_CLONES Mat3 HomogenizedStrain::moment(const std::vector<Points>& members) const {
   // sum (x - mean x)(X - mean X)^T = sum (x - a)(X - mean X)^T for any a (the X - mean X sum to
   // zero): one pass, a = the mean at t* keeping the numbers small.
   Mat3 out = Mat3::Zero();

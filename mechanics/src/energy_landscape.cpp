@@ -8,6 +8,8 @@
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/number_format.h"
 
+#include <Eigen/Core>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -33,24 +35,24 @@ FoldEnergy::~FoldEnergy() = default;
 FoldEnergy::Value FoldEnergy::evaluate(double t, const std::vector<double>& near, std::vector<double>& angles,
                                        Scratch& s) const {
   s.finite = design_.assembly.evaluate_rate(t, s.configuration, s.rates);
-  model_.node_positions(s.configuration, s.x);
-  if (s.finite) model_.node_rates(s.rates, s.v);
+  model_.mesh().nodes(s.configuration.members, s.x);  // the corners: the kernel needs no centre
+  if (s.finite) model_.mesh().nodes(s.rates, s.v);
   const std::size_t n = rest_angles_.size();
   s.theta.resize(n);
   s.rate.resize(n);
   s.turns.resize(n);
   s.y.resize(n);
   s.x_work.resize(n);
-  kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data());
+  kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data(),
+                  s.normals);
   const std::vector<double>& reference = near.empty() ? rest_angles_ : near;
   angles.resize(n);
   const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
   Value out;
   double de = 0.0, largest = 0.0;
+  const double shifter = 0x1.8p52;
   for (std::size_t h = 0; h < n; ++h) {
-    // continuous_angle: the whole turns nearest the reference (none unless it is half a turn away or more).
-    const double q = (reference[h] - s.theta[h]) * per_turn;
-    const double turns = std::abs(q) < 0.5 ? 0.0 : std::nearbyint(q);
+    const double turns = ((reference[h] - s.theta[h]) * per_turn + shifter) - shifter;
     const double theta = s.theta[h] + turn * turns;
     angles[h] = theta;
     s.turns[h] = static_cast<std::int8_t>(turns);

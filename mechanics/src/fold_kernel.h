@@ -1,7 +1,18 @@
 #pragma once
 // The fold angles and their rates in bulk, for the energy landscape (internal to
-// mechanics/): the folds' nodes and lengths as plain arrays, the angles' atan2
-// four at a time (glibc's libmvec, AVX2) where the processor has it.
+// mechanics/): plain arrays, the angles' atan2 four at a time (glibc's libmvec,
+// AVX2) where the processor has it.
+//
+// MERLIN2's angle from the panels' unit normals. The model's panels are planar
+// at every t (the motion is exact), so a fold's m = r_ij x r_kj is its first
+// panel's normal n_A times a positive length and a sign fixed by the panel's
+// corner order, and n = r_kj x r_kl likewise n_B: with e = r_kj / |r_kj|,
+//   theta = atan2((m x n) . e, m . n) = atan2(e . (n_A x s n_B), n_A . s n_B),
+// s = +-1 the fold's product of the two signs (taken at the model's t). The
+// panels turn rigidly, so d theta / dt = (w_B - w_A) . e, w a panel's angular
+// velocity (X dY/dt - Y dX/dt for a turn of B about e is the turn itself). A
+// panel's normal and angular velocity come once a panel from its diagonals (a
+// triangle: two sides), not twice a fold; no n5b8 centre is needed.
 
 #include "phedra/bar_hinge_model.h"
 
@@ -15,14 +26,19 @@ class FoldKernel {
   explicit FoldKernel(const BarHingeModel& model);
   std::size_t size() const { return j_.size(); }
 
-  /// theta of every fold at the nodes' positions x, in (-pi, pi] (hinge_angle's
-  /// value up to 2 pi), and (rate not null) d theta / dt for the nodes' rates v.
-  /// `y`, `x` are scratch of size() entries.
-  void angles(const Points& positions, const Points* v, double* theta, double* rate, double* y, double* x) const;
+  /// theta of every fold at the corner nodes' positions, in (-pi, pi] (hinge_angle's
+  /// value up to 2 pi), and (rates not null) d theta / dt for the corner nodes'
+  /// rates. `y`, `x` are scratch of size() entries, `frames` of any size.
+  void angles(const Points& corners, const Points* rates, double* theta, double* rate, double* y, double* x,
+              std::vector<double>& frames) const;
 
  private:
-  std::vector<std::uint32_t> j_, k_, i_, l_;
-  std::vector<double> length_, inverse_square_;  ///< |r_kj| (the motion keeps it) and its inverse square
+  /// Each panel's normal is (P[c] - P[a]) x (P[d] - P[b]).
+  std::vector<std::uint32_t> panel_a_, panel_b_, panel_c_, panel_d_;
+  /// 1 / |P[c] - P[a]|^2 and 1 / |(P[c] - P[a]) x (P[d] - P[b])|: the motion keeps both (the panel is rigid).
+  std::vector<double> inverse_square_diagonal_, inverse_normal_;
+  std::vector<std::uint32_t> j_, k_, first_, second_;  ///< the hinge's edge j-k and its two panels
+  std::vector<double> inverse_length_, sign_;          ///< 1 / |r_kj| (the motion keeps it), s
 };
 
 }  // namespace phedra
