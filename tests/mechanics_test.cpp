@@ -13,6 +13,7 @@
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 #include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
 #include "../mechanics/src/fold_kernel.h"   // FoldKernel (internal to mechanics/)
+#include "../mechanics/src/block_assembly.h"  // BlockAssembly (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 
@@ -285,6 +286,33 @@ TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and i
     }
   }
   CHECK(folds > 5000);
+}
+
+TEST_CASE("the stiffness's block assembly equals a dense sum of the same blocks, repeated nodes and empty columns too", "[mechanics]") {
+  std::mt19937_64 rng(3606);
+  for (int round = 0; round < 20; ++round) {
+    const std::size_t nodes = 1 + static_cast<std::size_t>(test::uniform(rng, 0, 30));
+    std::vector<std::vector<std::size_t>> elements(static_cast<std::size_t>(test::uniform(rng, 0, 40)));
+    for (auto& e : elements) {
+      e.resize(static_cast<std::size_t>(test::uniform(rng, 1, 5)));
+      for (auto& v : e) v = static_cast<std::size_t>(test::uniform(rng, 0, static_cast<double>(nodes) - 1e-9));
+    }
+    std::vector<std::span<const std::size_t>> spans(elements.begin(), elements.end());
+    BlockAssembly k(nodes, spans);
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(3 * static_cast<Eigen::Index>(nodes), 3 * static_cast<Eigen::Index>(nodes));
+    for (const auto& e : elements) {
+      for (std::size_t r : e) {
+        for (std::size_t c : e) {
+          const Mat3 block = Mat3::Random();
+          k.add(r, c, block);
+          dense.block<3, 3>(3 * static_cast<Eigen::Index>(r), 3 * static_cast<Eigen::Index>(c)) += block;
+        }
+      }
+    }
+    const Eigen::SparseMatrix<double> sparse = k.matrix();
+    REQUIRE(sparse.isCompressed());
+    CHECK((Eigen::MatrixXd(sparse) - dense).cwiseAbs().maxCoeff() <= 1e-12);
+  }
 }
 
 TEST_CASE("the mobility's SVD (LAPACK): A V = U S, V orthonormal and complete, rank-deficient and empty shapes", "[mechanics]") {

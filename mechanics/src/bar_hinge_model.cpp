@@ -1,5 +1,7 @@
 #include "phedra/bar_hinge_model.h"
 
+#include "block_assembly.h"
+
 #include "material_calibration.h"
 
 #include "phedra/errors.h"
@@ -277,34 +279,26 @@ std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
 double BarHingeModel::angle(std::size_t h, const Points& x) const { return hinge_angle(hinge_nodes(hinges_[h], x)); }
 
 Eigen::SparseMatrix<double> BarHingeModel::stiffness() const {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(bars_.size() * 36 + hinges_.size() * 144);
+  std::vector<std::span<const std::size_t>> elements;
+  elements.reserve(bars_.size() + hinges_.size());
+  for (const Bar& b : bars_) elements.emplace_back(b.nodes);
+  for (const Hinge& h : hinges_) elements.emplace_back(h.nodes);
+  BlockAssembly k(positions_.size(), elements);
   for (const Bar& b : bars_) {
     const Vec3 e = (positions_[b.nodes[1]] - positions_[b.nodes[0]]) / b.length;
     const Mat3 block = (b.stiffness / b.length) * (e * e.transpose());
     for (int r = 0; r < 2; ++r) {
-      for (int c = 0; c < 2; ++c) {
-        const double sign = r == c ? 1.0 : -1.0;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) entries.emplace_back(3 * b.nodes[r] + i, 3 * b.nodes[c] + j, sign * block(i, j));
-      }
+      for (int c = 0; c < 2; ++c) k.add(b.nodes[r], b.nodes[c], r == c ? block : Mat3(-block));
     }
   }
   for (const Hinge& h : hinges_) {
     const std::array<Vec3, 4> g = hinge_angle_gradient(hinge_nodes(h, positions_));
-    const double k = h.stiffness * h.length;
+    const double stiffness = h.stiffness * h.length;
     for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) {
-        const Mat3 block = k * (g[r] * g[c].transpose());
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) entries.emplace_back(3 * h.nodes[r] + i, 3 * h.nodes[c] + j, block(i, j));
-      }
+      for (int c = 0; c < 4; ++c) k.add(h.nodes[r], h.nodes[c], stiffness * (g[r] * g[c].transpose()));
     }
   }
-  const Eigen::Index n = static_cast<Eigen::Index>(3 * positions_.size());
-  Eigen::SparseMatrix<double> k(n, n);
-  k.setFromTriplets(entries.begin(), entries.end());
-  return k;
+  return k.matrix();
 }
 
 }  // namespace phedra
