@@ -2,6 +2,8 @@
 
 #include "phedra/errors.h"
 
+#include "cholmod_memory.h"
+
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #ifdef PHEDRA_CHOLMOD
@@ -25,6 +27,7 @@ class DeflatedShiftSolve {
   Eigen::Index rows() const { return k_.rows(); }
   Eigen::Index cols() const { return k_.cols(); }
   void set_shift(double sigma) {
+    cholmod_on_huge_pages();
     Eigen::SparseMatrix<double> shifted = k_;
     for (Eigen::Index i = 0; i < shifted.rows(); ++i) shifted.coeffRef(i, i) -= sigma;
     solver_.compute(shifted);
