@@ -2,7 +2,7 @@
 // A symmetric sparse matrix of 3 x 3 node blocks (the stiffness K), assembled in
 // place: the pattern from the elements' nodes first (each node's neighbours,
 // sorted), then every block added where it belongs. Eigen's setFromTriplets
-// took a tenth of the modes' time on a 10^4-panel array (9.5e6 triplets,
+// took 5-9 % of the modes' time on a 10^4-panel array (9.5e6 triplets,
 // 150 MB of them, sorted and summed); this writes each entry once.
 #include "phedra/vector_types.h"
 

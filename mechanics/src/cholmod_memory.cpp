@@ -18,6 +18,7 @@ constexpr std::size_t huge_page = std::size_t{1} << 21;
 
 void* huge_malloc(std::size_t size) {
   if (size < huge_page) return std::malloc(size);
+  if (size > static_cast<std::size_t>(-1) - huge_page) return nullptr;
   const std::size_t rounded = (size + huge_page - 1) / huge_page * huge_page;
   void* p = std::aligned_alloc(huge_page, rounded);
   if (p != nullptr) madvise(p, rounded, MADV_HUGEPAGE);  // advice only: a refusal changes nothing

@@ -44,7 +44,7 @@ FoldEnergy::Value FoldEnergy::evaluate(double t, const std::vector<double>& near
   s.y.resize(n);
   s.x_work.resize(n);
   kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data(),
-                  s.normals);
+                  s.frames);
   const std::vector<double>& reference = near.empty() ? rest_angles_ : near;
   angles.resize(n);
   const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;

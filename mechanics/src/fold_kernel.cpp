@@ -24,7 +24,6 @@ FoldKernel::FoldKernel(const BarHingeModel& model) {
     panel_b_.push_back(static_cast<std::uint32_t>(quad ? v[1] : v[0]));
     panel_c_.push_back(static_cast<std::uint32_t>(quad ? v[2] : v[1]));
     panel_d_.push_back(static_cast<std::uint32_t>(quad ? v[3] : v[2]));
-    inverse_square_diagonal_.push_back(1.0 / (x[panel_c_.back()] - x[panel_a_.back()]).squaredNorm());
     inverse_normal_.push_back(1.0 / panel_normal(x[panel_a_.back()], x[panel_b_.back()], x[panel_c_.back()],
                                                  x[panel_d_.back()]).norm());
   }
@@ -43,14 +42,16 @@ FoldKernel::FoldKernel(const BarHingeModel& model) {
       return panel_normal(x[panel_a_[p]], x[panel_b_[p]], x[panel_c_[p]], x[panel_d_[p]]);
     };
     const double along = m.dot(normal(first_.back())) * nn.dot(normal(second_.back()));
-    if (!(along != 0.0)) throw Error(ExitCode::internal, "energy: a fold's wing lies on its hinge");
+    if (!(along != 0.0)) {
+      throw Error(ExitCode::internal, "energy: a fold's wing lies on its hinge, or one of its panels has no area");
+    }
     sign_.push_back(along > 0.0 ? 1.0 : -1.0);
   }
 }
 
 PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate, double* y, double* x,
                         std::vector<double>& frames) const {
-  // Each panel's unit normal and (with rates) its angular velocity: 6 numbers a panel.
+  // Each panel's unit normal and (with rates) its angular velocity across the normal: 6 numbers a panel.
   const std::size_t panels = panel_a_.size();
   frames.resize(6 * panels);
   double* f = frames.data();
@@ -64,14 +65,12 @@ PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, doub
     f[1] = unit.y();
     f[2] = unit.z();
     if (!v) continue;
-    // The panel turns rigidly (the motion is isometric): with d' = w x d for its
-    // diagonals, the normal's rate is w x unit, so unit x (its rate) is w less its
-    // part along the normal, and that part is unit . (d1 x d1') / |d1|^2.
-    const Vec3& va = (*v)[panel_a_[q]];
-    const Vec3& vb = (*v)[panel_b_[q]];
-    const Vec3 dd1 = (*v)[panel_c_[q]] - va;
-    const Vec3 dn = dd1.cross(d2) + d1.cross((*v)[panel_d_[q]] - vb);
-    const Vec3 turning = inverse * unit.cross(dn) + (unit.dot(d1.cross(dd1)) * inverse_square_diagonal_[q]) * unit;
+    // The panel turns rigidly (the motion is isometric) with some w: its normal's
+    // rate is w x unit, so unit x (that rate) is w less its part along the normal,
+    // and that part is across every hinge of the panel (they lie in its plane):
+    // it adds nothing to a fold's rate. unit x (rate of d1 x d2) / |d1 x d2| is the rest.
+    const Vec3 dn = ((*v)[panel_c_[q]] - (*v)[panel_a_[q]]).cross(d2) + d1.cross((*v)[panel_d_[q]] - (*v)[panel_b_[q]]);
+    const Vec3 turning = inverse * unit.cross(dn);
     f[3] = turning.x();
     f[4] = turning.y();
     f[5] = turning.z();

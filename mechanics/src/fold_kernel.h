@@ -10,9 +10,10 @@
 //   theta = atan2((m x n) . e, m . n) = atan2(e . (n_A x s n_B), n_A . s n_B),
 // s = +-1 the fold's product of the two signs (taken at the model's t). The
 // panels turn rigidly, so d theta / dt = (w_B - w_A) . e, w a panel's angular
-// velocity (X dY/dt - Y dX/dt for a turn of B about e is the turn itself). A
-// panel's normal and angular velocity come once a panel from its diagonals (a
-// triangle: two sides), not twice a fold; no n5b8 centre is needed.
+// velocity (X dY/dt - Y dX/dt for a turn of B about e is the turn itself); its
+// part along the panel's normal is across e, so n x dn/dt (the rest of w) is
+// enough. A panel's normal and that turn come once a panel from its diagonals
+// (a triangle: two sides), not twice a fold; no n5b8 centre is needed.
 
 #include "phedra/bar_hinge_model.h"
 
@@ -35,8 +36,8 @@ class FoldKernel {
  private:
   /// Each panel's normal is (P[c] - P[a]) x (P[d] - P[b]).
   std::vector<std::uint32_t> panel_a_, panel_b_, panel_c_, panel_d_;
-  /// 1 / |P[c] - P[a]|^2 and 1 / |(P[c] - P[a]) x (P[d] - P[b])|: the motion keeps both (the panel is rigid).
-  std::vector<double> inverse_square_diagonal_, inverse_normal_;
+  /// 1 / |(P[c] - P[a]) x (P[d] - P[b])|: the motion keeps it (the panel is rigid).
+  std::vector<double> inverse_normal_;
   std::vector<std::uint32_t> j_, k_, first_, second_;  ///< the hinge's edge j-k and its two panels
   std::vector<double> inverse_length_, sign_;          ///< 1 / |r_kj| (the motion keeps it), s
 };

@@ -88,7 +88,8 @@ class FoldEnergy {
     std::vector<Points> rates;
     bool finite = false;  ///< the rates exist (not at a flexion limit)
     Points x, v;  ///< the corner nodes' positions and rates
-    std::vector<double> theta, rate, normals, y, x_work;  ///< theta: each fold's angle in (-pi, pi]
+    std::vector<double> theta, rate, frames, y, x_work;  ///< theta: each fold's angle in (-pi, pi]; frames: the panels'
+                                                        ///< normals and turns (the fold kernel's)
     std::vector<std::int8_t> turns;  ///< each fold's continuous angle is theta + 2 pi turns
   };
   struct Value {
