@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test suite built by clang with AddressSanitizer and
-# UndefinedBehaviorSanitizer (and libFuzzer's coverage, so that scripts/fuzz.sh
-# reuses this build) in build-sanitize/. Any report fails the run.
+# UndefinedBehaviorSanitizer (and libFuzzer's coverage on the libraries the fuzz
+# harness runs, so that scripts/fuzz.sh reuses this build) in build-sanitize/. Any report fails the run.
 # Every C++ test runs (every module's), with smaller batches of the slow
 # property tests (PHEDRA_SANITIZE_BUILD); not run here: the clients of the
 # exports (three.js, the glTF validator, Blender, ezdxf, PrusaSlicer, the pages in Chromium, the
