@@ -264,8 +264,8 @@ TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and i
         model.mesh().nodes(c.members, corners);
         model.mesh().nodes(rates, corner_rates);
         const std::size_t n = kernel.size();
-        std::vector<double> theta(n), rate(n), y(n), xs(n), frames;
-        kernel.angles(corners, &corner_rates, theta.data(), rate.data(), y.data(), xs.data(), frames);
+        std::vector<double> theta(n), rate(n), frames;
+        kernel.angles(corners, &corner_rates, theta.data(), rate.data(), frames);
         double speed = 0.0;
         for (const Vec3& w : v) speed = std::max(speed, w.norm());
         for (std::size_t h = 0; h < n; ++h) {

@@ -6,6 +6,8 @@
 #include "support/test_files.h"
 #include "phedra/design.h"
 #include "phedra/design_preset.h"
+#include "phedra/homogenized_strain.h"
+#include "phedra/net_writer.h"
 #include "phedra/tube.h"
 
 #include <catch2/catch.hpp>
@@ -120,4 +122,51 @@ TEST_CASE("the rate is infinite at a flexion limit: evaluate_rate says so", "[ra
   CHECK_FALSE(design.assembly.evaluate_rate(design.assembly.flexion_interval().upper.t, c, rate));
   CHECK(c.members[0].size() == design.assembly.topology(0).vertex_count());
   CHECK(design.assembly.evaluate_rate(design.assembly.t_star(), c, rate));
+}
+
+TEST_CASE("vertices written from the canonical nets, and the strain read from them, equal the members written out",
+          "[rate][metrics]") {
+  // Assembly::write_vertices (the energy's nodes) against evaluate_rate's members, bit for bit, and
+  // HomogenizedStrain from the nets against the one from the positions: every shipped preset, open and
+  // closed members, every vertex, inside the interval and at a limit (no rates there).
+  std::size_t presets = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "preset.schema.json") continue;
+    INFO(entry.path().filename().string());
+    const Design design = load_design(entry.path());
+    const Assembly& a = design.assembly;
+    std::vector<VertexRef> every;
+    for (std::size_t m = 0; m < a.member_count(); ++m) {
+      for (std::size_t v = 0; v < a.topology(m).vertex_count(); ++v) every.push_back({m, v});
+    }
+    const std::vector<Assembly::NetPlace> places = a.net_places(every);
+    const HomogenizedStrain strain(a, MetricsAxes::structural);
+    const auto& interval = a.flexion_interval();
+    for (double f : {0.3, 0.9, 1.0}) {
+      const double t = f == 1.0 ? interval.upper.t : interval.lower.t + f * (interval.upper.t - interval.lower.t);
+      AssemblyConfiguration c;
+      std::vector<Points> rates;
+      const bool finite = a.evaluate_rate(t, c, rates);
+      CHECK(finite == (f < 1.0));
+      std::vector<NetState> states, state_rates;
+      CHECK(a.evaluate_canonical_rate(t, states, state_rates) == finite);
+      Points x, v;
+      a.write_vertices(states, places, x);
+      if (finite) a.write_vertices(state_rates, places, v, NetWriter::Kind::rates);
+      for (std::size_t k = 0; k < every.size(); ++k) {
+        REQUIRE(x[k] == c.members[every[k].member][every[k].vertex]);
+        if (finite) REQUIRE(v[k] == rates[every[k].member][every[k].vertex]);
+      }
+      const HomogenizedStrain::State written = strain.state_of(c, finite ? &rates : nullptr);
+      const HomogenizedStrain::State nets = strain.state_of(states, finite ? &state_rates : nullptr);
+      for (int k = 0; k < 3; ++k) {
+        REQUIRE(written.stretch[k].has_value() == nets.stretch[k].has_value());
+        REQUIRE(written.rate[k].has_value() == nets.rate[k].has_value());
+        if (written.stretch[k]) CHECK(std::abs(*nets.stretch[k] - *written.stretch[k]) <= 1e-13 * *written.stretch[k]);
+        if (written.rate[k]) CHECK(std::abs(*nets.rate[k] - *written.rate[k]) <= 1e-11 * (1.0 + std::abs(*written.rate[k])));
+      }
+    }
+    ++presets;
+  }
+  CHECK(presets >= 8);
 }

@@ -371,11 +371,11 @@ PinLayout pin_layout(const ThickPlates& plates, const std::vector<double>& ts, s
         const auto& m = layout.margins.at(edges[h]);
         return lengths[h] - m[0] - m[1];
       };
-      // The end of part i's hinge nearer to point c.
-      auto end_near = [&](std::size_t i, const Vec3& c) {
+      // The end of part i's hinge nearer to `point`.
+      auto end_near = [&](std::size_t i, const Vec3& point) {
         const Edge& e = edges[at.hinge_of[i]];
         const Vec3 u = x[e.first], d = x[e.second] - u;
-        return (c - u).dot(d) < 0.5 * d.squaredNorm() ? 0 : 1;
+        return (point - u).dot(d) < 0.5 * d.squaredNorm() ? 0 : 1;
       };
       auto unchanged = [&](std::size_t i, std::size_t j) {
         return !changed[at.hinge_of[i]] && !(j < n && changed[at.hinge_of[j]]);

@@ -2,6 +2,7 @@
 
 #include "phedra/cpu_clones.h"
 #include "phedra/errors.h"
+#include "phedra/net_writer.h"
 
 #include <Eigen/Eigenvalues>
 
@@ -55,8 +56,10 @@ HomogenizedStrain::HomogenizedStrain(const Assembly& assembly, MetricsAxes axes)
     for (const Vec3& p : m) {
       reference_.push_back(p - mean);
       covariance += reference_.back() * reference_.back().transpose();
+      reference_sum_ += reference_.back();
     }
   }
+  canonical_anchor_ = assembly.base().frame().point_to_canonical(anchor_);
   // The pseudo-inverse: a design flat at t* has no spread across its plane.
   const Eigen::SelfAdjointEigenSolver<Mat3> solver(covariance);
   const double largest = solver.eigenvalues().maxCoeff();
@@ -126,19 +129,53 @@ std::array<std::optional<double>, 3> HomogenizedStrain::stretch(double t) const 
   return out;
 }
 
-HomogenizedStrain::State HomogenizedStrain::state_of(const AssemblyConfiguration& c, const std::vector<Points>* rates) const {
+PHEDRA_CPU_CLONES Mat3 HomogenizedStrain::canonical_moment(const std::vector<NetState>& states, bool rates) const {
+  // x = o + R p (p canonical; a rate: R p): sum (x - a) Y^T = R sum (p - c) Y^T + (o + R c - a) sum Y^T, c the
+  // anchor in the canonical frame (o + R c = a but for rounding; a rate: c = 0 and o = 0), sum Y zero but for rounding.
+  const Vec3 c = rates ? Vec3::Zero() : canonical_anchor_;
+  Mat3 g = Mat3::Zero();
+  const Vec3* y = reference_.data();  // in write_user's order: members, rows, columns
+  for (std::size_t m = 0; m < states.size(); ++m) {
+    const NetState& state = states[m];
+    const std::size_t n = state.apexes.size() - 1, rows = assembly_.topology(m).rows();
+    const bool closed = assembly_.closed(m);
+    const double* s = state.apexes.data();
+    for (std::size_t i = 0; i < rows; ++i) {
+      const Vec3* axial = &state.axial[i * n];
+      const Vec3* general = &state.general[i * n];
+      if (!closed) g.noalias() += (NetWriter::canonical(false, n, 0, s, axial, general) - c) * (*y++).transpose();
+      for (std::size_t j = 0; j < (closed ? n - 1 : n); ++j) g.noalias() += (general[j] - c) * (*y++).transpose();
+      if (!closed) g.noalias() += (NetWriter::canonical(false, n, n + 1, s, axial, general) - c) * (*y++).transpose();
+    }
+  }
+  const CanonicalFrame& frame = assembly_.base().frame();
+  const Mat3 to_user = frame.rotation().transpose();
+  const Vec3 shift = (rates ? Vec3::Zero() : Vec3(frame.origin() + to_user * c)) - anchor_;
+  return to_user * g + shift * reference_sum_.transpose();
+}
+
+HomogenizedStrain::State HomogenizedStrain::state_from(const Mat3& f, const std::optional<Mat3>& df) const {
   State s;
-  const Mat3 f = moment(c.members) * pseudo_inverse_;
-  // (the reference is centred: M is linear, so dF/dt = M(dx/dt) C^+)
-  const Mat3 df = rates ? Mat3(moment(*rates) * pseudo_inverse_) : Mat3(Mat3::Zero());
   for (int k = 0; k < 3; ++k) {
     if (!defined_[k]) continue;
     const Vec3 fd = f * axes_[k];
     const double stretch = fd.norm();
     s.stretch[k] = stretch;
-    if (rates && stretch > 0.0) s.rate[k] = fd.dot(df * axes_[k]) / (stretch * stretch);
+    if (df && stretch > 0.0) s.rate[k] = fd.dot(*df * axes_[k]) / (stretch * stretch);
   }
   return s;
+}
+
+HomogenizedStrain::State HomogenizedStrain::state_of(const AssemblyConfiguration& c, const std::vector<Points>* rates) const {
+  // (the reference is centred: M is linear, so dF/dt = M(dx/dt) C^+)
+  return state_from(moment(c.members) * pseudo_inverse_,
+                    rates ? std::optional<Mat3>(moment(*rates) * pseudo_inverse_) : std::nullopt);
+}
+
+HomogenizedStrain::State HomogenizedStrain::state_of(const std::vector<NetState>& states,
+                                                     const std::vector<NetState>* rates) const {
+  return state_from(canonical_moment(states, false) * pseudo_inverse_,
+                    rates ? std::optional<Mat3>(canonical_moment(*rates, true) * pseudo_inverse_) : std::nullopt);
 }
 
 HomogenizedStrain::State HomogenizedStrain::at(double t) const {

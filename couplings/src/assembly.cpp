@@ -112,26 +112,59 @@ void Assembly::evaluate_on(double t, const std::vector<bool>* flipped, AssemblyC
   write_configuration(out);
 }
 
-bool Assembly::evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const {
-  std::vector<NetState>& states = out.states;
+bool Assembly::evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates) const {
   states.resize(members_.size());
-  std::vector<NetState> rate_states(members_.size());
-  const bool finite = base_.evaluate_canonical_rate(t, states[0], rate_states[0]);
   rates.resize(members_.size());
+  const bool finite = base_.evaluate_canonical_rate(t, states[0], rates[0]);
   for (std::size_t m = 1; m < members_.size(); ++m) {
     const std::size_t parent = members_[m].seeded->seed().parent;
     const std::size_t columns = states[parent].apexes.size() - 1;
     members_[m].seeded->evaluate(states[parent], columns, states[m]);
-    if (finite) members_[m].seeded->evaluate(rate_states[parent], columns, rate_states[m]);
+    if (finite) members_[m].seeded->evaluate(rates[parent], columns, rates[m]);
   }
+  return finite;
+}
+
+bool Assembly::evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const {
+  const bool finite = evaluate_canonical_rate(t, out.states, out.rate_states);
   out.t = t;
   write_configuration(out);
   if (!finite) return false;
+  rates.resize(members_.size());
   for (std::size_t m = 0; m < members_.size(); ++m) {
     rates[m].resize(members_[m].topology.vertex_count());
-    write_user(m, rate_states[m], rates[m], NetWriter::Kind::rates);
+    write_user(m, out.rate_states[m], rates[m], NetWriter::Kind::rates);
   }
   return true;
+}
+
+std::vector<Assembly::NetPlace> Assembly::net_places(std::span<const VertexRef> vertices) const {
+  std::vector<NetPlace> out;
+  out.reserve(vertices.size());
+  for (const VertexRef& v : vertices) {
+    const std::size_t columns = members_[v.member].topology.columns();
+    const std::size_t n = members_[v.member].closed ? columns + 1 : columns - 2;  // NetWriter::columns inverted
+    out.push_back({static_cast<std::uint32_t>(v.member), static_cast<std::uint32_t>(v.vertex / columns * n),
+                   static_cast<std::uint32_t>(v.vertex % columns)});
+  }
+  return out;
+}
+
+void Assembly::write_vertices(const std::vector<NetState>& states, std::span<const NetPlace> places, Points& out,
+                              NetWriter::Kind kind) const {
+  out.resize(places.size());
+  std::vector<NetWriter> writers;  // one a member (its turn and origin)
+  writers.reserve(members_.size());
+  for (std::size_t m = 0; m < members_.size(); ++m) {
+    writers.emplace_back(base_.frame(), members_[m].closed, states[m].apexes.size() - 1, std::span<Vec3>(), kind);
+  }
+  for (std::size_t k = 0; k < places.size(); ++k) {
+    const NetPlace& p = places[k];
+    const NetState& state = states[p.member];
+    out[k] = writers[p.member].user(NetWriter::canonical(members_[p.member].closed, state.apexes.size() - 1, p.column,
+                                                         state.apexes.data(), &state.axial[p.row_start],
+                                                         &state.general[p.row_start]));
+  }
 }
 
 void Assembly::write_configuration(AssemblyConfiguration& out) const {

@@ -14,14 +14,14 @@
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numbers>
 #include <thread>
 
 namespace phedra {
 
 FoldEnergy::FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options)
     : design_(design), model_(design, design.assembly.evaluate(rest_t), options),
-      kernel_(std::make_unique<FoldKernel>(model_)) {
+      kernel_(std::make_unique<FoldKernel>(model_)),
+      places_(design.assembly.net_places(model_.mesh().node_vertex)) {
   rest_angles_.resize(model_.fold_count());
   weight_.resize(model_.fold_count());
   for (std::size_t h = 0; h < rest_angles_.size(); ++h) {
@@ -32,38 +32,37 @@ FoldEnergy::FoldEnergy(const Design& design, double rest_t, const StiffnessOptio
 
 FoldEnergy::~FoldEnergy() = default;
 
+void FoldEnergy::nodes_at(double t, Scratch& s) const {
+  // Only the corner nodes (the kernel needs no centre), straight from the nets: no member's vertices written out.
+  s.finite = design_.assembly.evaluate_canonical_rate(t, s.states, s.rates);
+  design_.assembly.write_vertices(s.states, places_, s.x);
+  if (s.finite) design_.assembly.write_vertices(s.rates, places_, s.v, NetWriter::Kind::rates);
+}
+
+FoldEnergy::Value FoldEnergy::evaluate_from(double t, const double* near, std::vector<double>& angles,
+                                            Scratch& s) const {
+  nodes_at(t, s);
+  const std::size_t n = rest_angles_.size();
+  angles.resize(n);
+  s.turns.resize(n);
+  const FoldKernel::Sums sums = kernel_->energy(s.x, s.finite ? &s.v : nullptr, near, rest_angles_.data(),
+                                                weight_.data(), angles.data(), s.turns.data(), s.frames);
+  Value out;
+  out.energy = sums.energy;
+  if (s.finite) out.rate = sums.rate;
+  out.largest_turn = sums.largest;
+  return out;
+}
+
 FoldEnergy::Value FoldEnergy::evaluate(double t, const std::vector<double>& near, std::vector<double>& angles,
                                        Scratch& s) const {
-  s.finite = design_.assembly.evaluate_rate(t, s.configuration, s.rates);
-  model_.mesh().nodes(s.configuration.members, s.x);  // the corners: the kernel needs no centre
-  if (s.finite) model_.mesh().nodes(s.rates, s.v);
-  const std::size_t n = rest_angles_.size();
-  s.theta.resize(n);
-  s.rate.resize(n);
-  s.turns.resize(n);
-  s.y.resize(n);
-  s.x_work.resize(n);
-  kernel_->angles(s.x, s.finite ? &s.v : nullptr, s.theta.data(), s.rate.data(), s.y.data(), s.x_work.data(),
-                  s.frames);
-  const std::vector<double>& reference = near.empty() ? rest_angles_ : near;
-  angles.resize(n);
-  const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
-  Value out;
-  double de = 0.0, largest = 0.0;
-  const double shifter = 0x1.8p52;
-  for (std::size_t h = 0; h < n; ++h) {
-    const double turns = ((reference[h] - s.theta[h]) * per_turn + shifter) - shifter;
-    const double theta = s.theta[h] + turn * turns;
-    angles[h] = theta;
-    s.turns[h] = static_cast<std::int8_t>(turns);
-    largest = std::max(largest, std::abs(theta - reference[h]));
-    const double d = theta - rest_angles_[h];
-    out.energy += 0.5 * weight_[h] * d * d;
-    de += weight_[h] * d * s.rate[h];
-  }
-  if (s.finite) out.rate = de;
-  out.largest_turn = largest;
-  return out;
+  return evaluate_from(t, near.empty() ? rest_angles_.data() : near.data(), angles, s);
+}
+
+FoldEnergy::Value FoldEnergy::evaluate_turned(double t, const std::vector<std::int8_t>& turns, std::vector<double>& angles,
+                                              Scratch& s) const {
+  s.turns = turns;
+  return evaluate_from(t, nullptr, angles, s);
 }
 
 double FoldEnergy::energy(double t, std::vector<double>& angles, const std::vector<double>& near) const {
@@ -179,7 +178,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     s.t = p.t;
     s.energy = p.energy;
     s.rate = p.rate;
-    const HomogenizedStrain::State state = strain.state_of(scratch.configuration, scratch.finite ? &scratch.rates : nullptr);
+    const HomogenizedStrain::State state = strain.state_of(scratch.states, scratch.finite ? &scratch.rates : nullptr);
     for (int k = 0; k < 3; ++k) {
       if (!state.stretch[k]) continue;
       s.length[k] = at_star[k] * *state.stretch[k];
@@ -247,14 +246,10 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   }
   for (const Kept& p : points) out.largest_energy = std::max(out.largest_energy, p.energy);
   FoldEnergy::Scratch scratch;  // the equilibria's
-  // Sample i with its angles (evaluated again: once for the raw angles, once carried from them turned).
+  // Sample i with its angles (evaluated again with its turns).
   auto restore = [&](std::size_t i) {
     Point p{points[i].t, 0.0, std::nullopt, {}};
-    fold.evaluate(p.t, fold.rest_angles(), p.angles, scratch);
-    const double turn = 2.0 * std::numbers::pi;
-    std::vector<double> turned(p.angles.size());
-    for (std::size_t h = 0; h < turned.size(); ++h) turned[h] = scratch.theta[h] + turn * points[i].turns[h];
-    const FoldEnergy::Value v = fold.evaluate(p.t, turned, p.angles, scratch);
+    const FoldEnergy::Value v = fold.evaluate_turned(p.t, points[i].turns, p.angles, scratch);
     p.energy = v.energy;
     p.rate = v.rate;
     return p;

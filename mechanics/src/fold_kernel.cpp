@@ -5,7 +5,9 @@
 #include "phedra/cpu_clones.h"
 #include "phedra/errors.h"
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace phedra {
 namespace {
@@ -34,7 +36,6 @@ FoldKernel::FoldKernel(const BarHingeModel& model) {
     k_.push_back(static_cast<std::uint32_t>(hinge.nodes[1]));
     first_.push_back(static_cast<std::uint32_t>(hinge.panels[0]));   // the panel of wing i
     second_.push_back(static_cast<std::uint32_t>(hinge.panels[1]));  // of wing l
-    inverse_length_.push_back(1.0 / hinge.length);
     const HingeNodes nodes = hinge_nodes(hinge, x);
     const Vec3 rkj = nodes.k - nodes.j;
     const Vec3 m = (nodes.i - nodes.j).cross(rkj), nn = rkj.cross(nodes.k - nodes.l);
@@ -45,12 +46,11 @@ FoldKernel::FoldKernel(const BarHingeModel& model) {
     if (!(along != 0.0)) {
       throw Error(ExitCode::internal, "energy: a fold's wing lies on its hinge, or one of its panels has no area");
     }
-    sign_.push_back(along > 0.0 ? 1.0 : -1.0);
+    signed_inverse_length_.push_back((along > 0.0 ? 1.0 : -1.0) / hinge.length);
   }
 }
 
-PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate, double* y, double* x,
-                        std::vector<double>& frames) const {
+PHEDRA_CPU_CLONES void FoldKernel::panel_frames(const Points& p, const Points* v, std::vector<double>& frames) const {
   // Each panel's unit normal and (with rates) its angular velocity across the normal: 6 numbers a panel.
   const std::size_t panels = panel_a_.size();
   frames.resize(6 * panels);
@@ -75,23 +75,82 @@ PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, doub
     f[4] = turning.y();
     f[5] = turning.z();
   }
-  const std::size_t n = size();
-  const double* frame = frames.data();
-  for (std::size_t h = 0; h < n; ++h) {
-    const double* fa = frame + 6 * first_[h];
-    const double* fb = frame + 6 * second_[h];
-    const Vec3 na(fa[0], fa[1], fa[2]);
-    const Vec3 nb = sign_[h] * Vec3(fb[0], fb[1], fb[2]);
-    const Vec3& xj = p[j_[h]];
-    const Vec3 e = inverse_length_[h] * (p[k_[h]] - xj);
-    const Vec3 c = na.cross(nb);
-    y[h] = e.dot(c);
-    x[h] = na.dot(nb);
+}
+
+inline void FoldKernel::block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames,
+                              double* theta, double* rate, double* y, double* x) const {
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::size_t h = h0 + i;
+    const double* fa = frames + 6 * first_[h];
+    const double* fb = frames + 6 * second_[h];
+    const Vec3 na(fa[0], fa[1], fa[2]), nb(fb[0], fb[1], fb[2]);
+    // With n_B's sign s and e = r_kj / |r_kj|: y = e . (n_A x s n_B) = (s / |r_kj|) r_kj . (n_A x n_B).
+    const double scaled = signed_inverse_length_[h];
+    const Vec3 r = p[k_[h]] - p[j_[h]];
+    y[i] = scaled * r.dot(na.cross(nb));
+    x[i] = std::copysign(1.0, scaled) * na.dot(nb);
     if (!v) continue;
     // d theta / dt: the panels' relative turning rate about the hinge (e runs j to k).
-    rate[h] = e.dot(Vec3(fb[3] - fa[3], fb[4] - fa[4], fb[5] - fa[5]));
+    rate[i] = std::abs(scaled) * r.dot(Vec3(fb[3] - fa[3], fb[4] - fa[4], fb[5] - fa[5]));
   }
-  atan2_many(y, x, theta, n);
+  atan2_many(y, x, theta, count);
+}
+
+namespace {
+constexpr std::size_t block_size = 256;  // four arrays of it: 8 KiB, in the first cache level
+}  // namespace
+
+PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate,
+                                          std::vector<double>& frames) const {
+  panel_frames(p, v, frames);
+  double y[block_size], x[block_size];
+  for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
+    block(h0, std::min(block_size, size() - h0), p, v, frames.data(), theta + h0, rate + h0, y, x);
+  }
+}
+
+PHEDRA_CPU_CLONES FoldKernel::Sums FoldKernel::energy(const Points& p, const Points* v, const double* reference,
+                                                      const double* rest, const double* weight, double* angles,
+                                                      std::int8_t* turns, std::vector<double>& frames) const {
+  panel_frames(p, v, frames);
+  const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
+  const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
+  double y[block_size], x[block_size], theta[block_size], rate[block_size];
+  // Four partial sums of each (the compiler's vector lanes, and no chain of
+  // additions each waiting for the one before): summed at the end.
+  constexpr std::size_t lanes = 4;
+  double energy[lanes] = {}, rates[lanes] = {}, largest[lanes] = {};
+  for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
+    const std::size_t count = std::min(block_size, size() - h0);
+    block(h0, count, p, v, frames.data(), theta, rate, y, x);
+    if (!v) std::fill(rate, rate + count, 0.0);
+    const std::size_t whole_lanes = count / lanes * lanes;
+    for (std::size_t i = 0; i < count; i += lanes) {
+      const std::size_t width = i < whole_lanes ? lanes : count - i;
+      for (std::size_t l = 0; l < width; ++l) {
+        const std::size_t h = h0 + i + l;
+        const double raw = theta[i + l];
+        double whole;
+        if (reference) {
+          whole = ((reference[h] - raw) * per_turn + shifter) - shifter;
+          turns[h] = static_cast<std::int8_t>(whole);
+        } else {
+          whole = turns[h];
+        }
+        const double continuous = raw + turn * whole;
+        if (reference) largest[l] = std::max(largest[l], std::abs(continuous - reference[h]));
+        angles[h] = continuous;
+        const double d = continuous - rest[h], wd = weight[h] * d;
+        energy[l] += wd * d;
+        rates[l] += wd * rate[i + l];
+      }
+    }
+  }
+  Sums out;
+  out.energy = 0.5 * ((energy[0] + energy[1]) + (energy[2] + energy[3]));
+  out.rate = (rates[0] + rates[1]) + (rates[2] + rates[3]);
+  out.largest = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
+  return out;
 }
 
 }  // namespace phedra

@@ -54,6 +54,9 @@ class HomogenizedStrain {
   /// The same from a configuration and its exact rates (Assembly::evaluate_rate;
   /// none: the stretches only). Const and touches nothing: safe on several threads.
   State state_of(const AssemblyConfiguration& c, const std::vector<Points>* rates) const;
+  /// The same from the members' canonical nets and their rates
+  /// (Assembly::evaluate_canonical_rate), the positions never written out.
+  State state_of(const std::vector<NetState>& states, const std::vector<NetState>* rates) const;
   /// The positions of the last evaluation (at(t) ends with t's).
   const AssemblyConfiguration& configuration() const { return configuration_; }
 
@@ -63,6 +66,9 @@ class HomogenizedStrain {
  private:
   /// M(x) = sum (x - mean x)(X - mean X)^T over the vertices, X at t*.
   Mat3 moment(const std::vector<Points>& members) const;
+  /// The same from canonical nets (positions, or `rates`: their rates).
+  Mat3 canonical_moment(const std::vector<NetState>& states, bool rates) const;
+  State state_from(const Mat3& f, const std::optional<Mat3>& df) const;
   void evaluate(double t) const;
 
   const Assembly& assembly_;
@@ -70,6 +76,8 @@ class HomogenizedStrain {
   std::array<bool, 3> defined_{};
   Points reference_;            ///< X - mean X, every member's vertices in order
   Vec3 anchor_ = Vec3::Zero();  ///< mean X
+  Vec3 canonical_anchor_ = Vec3::Zero();  ///< mean X in the canonical frame
+  Vec3 reference_sum_ = Vec3::Zero();     ///< sum of reference_ (zero but for rounding)
   Mat3 pseudo_inverse_;         ///< of sum (X - mean)(X - mean)^T
   double h_ = 0.0, lo_ = 0.0, hi_ = 0.0;
   mutable AssemblyConfiguration configuration_;

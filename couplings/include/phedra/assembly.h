@@ -9,8 +9,10 @@
 #include "phedra/phedron.h"
 #include "phedra/seeded_member.h"
 
+#include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,8 +30,8 @@ struct AssemblyConfiguration {
   double t = 0.0;
   std::vector<Points> members;
   std::vector<ClosureGap> closure;
-  /// Scratch of evaluate (the members' canonical nets), kept between calls.
-  std::vector<NetState> states;
+  /// Scratch of evaluate (the members' canonical nets, and their rates), kept between calls.
+  std::vector<NetState> states, rate_states;
 };
 
 class Assembly {
@@ -80,6 +82,19 @@ class Assembly {
   /// recursions are linear in their parent's state). Returns false at a flexion
   /// limit, where the rates are infinite (`out` is complete then, `rates` not).
   bool evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const;
+  /// The members' canonical nets at t and their rates (what evaluate_rate writes
+  /// out), without writing them: `rates` incomplete and false at a flexion limit.
+  bool evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates) const;
+  /// Where a member vertex is in its member's canonical nets: the member, the
+  /// first entry of its row (row times the net's columns) and its output column.
+  struct NetPlace {
+    std::uint32_t member = 0, row_start = 0, column = 0;
+  };
+  std::vector<NetPlace> net_places(std::span<const VertexRef> vertices) const;
+  /// The user-frame positions (Kind::rates: rates) of the vertices at `places`
+  /// from the canonical nets (or their rates) evaluate_canonical_rate gives.
+  void write_vertices(const std::vector<NetState>& states, std::span<const NetPlace> places, Points& out,
+                      NetWriter::Kind kind = NetWriter::Kind::positions) const;
 
   /// Groups of vertices of different members that coincide at t* (within 1e-9 of
   /// the model size): the vertices the couplings share. They must stay together.

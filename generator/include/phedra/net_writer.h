@@ -23,6 +23,19 @@ class NetWriter {
   /// Output columns per row: n + 2 (open) or n - 1 (closed).
   static std::size_t columns(bool closed, std::size_t n) { return closed ? n - 1 : n + 2; }
 
+  /// Output column c of a row in the canonical frame, from the apexes s[0..n],
+  /// the axial row and the general row (n entries each): what write() puts
+  /// there before turning it into the user's frame.
+  static Vec3 canonical(bool closed, std::size_t n, std::size_t c, const double* s, const Vec3* axial,
+                        const Vec3* general) {
+    if (closed) return general[c];
+    if (c == 0) return general[0] + (Vec3(0, 0, s[0]) - axial[0]);
+    if (c == n + 1) return general[n - 1] + (Vec3(0, 0, s[n]) - axial[n - 1]);
+    return general[c - 1];
+  }
+  /// The canonical frame's point p in the user's frame (a rate: turned only).
+  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
+
   /// Row i from the apexes s[0..n], the axial row and the general row (n entries each).
   void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
     if (closed_) {
@@ -37,7 +50,6 @@ class NetWriter {
   }
 
  private:
-  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
   Mat3 to_user_;
   Vec3 origin_;
   bool closed_;

@@ -84,22 +84,28 @@ class FoldEnergy {
 
   /// What one evaluation needs: the configuration and rates at t (read after it).
   struct Scratch {
-    AssemblyConfiguration configuration;
-    std::vector<Points> rates;
+    std::vector<NetState> states, rates;  ///< the members' canonical nets at t and their rates
     bool finite = false;  ///< the rates exist (not at a flexion limit)
     Points x, v;  ///< the corner nodes' positions and rates
-    std::vector<double> theta, rate, frames, y, x_work;  ///< theta: each fold's angle in (-pi, pi]; frames: the panels'
-                                                        ///< normals and turns (the fold kernel's)
-    std::vector<std::int8_t> turns;  ///< each fold's continuous angle is theta + 2 pi turns
+    std::vector<double> frames;  ///< the panels' normals and turns (the fold kernel's)
+    /// Each fold's continuous angle is its angle in (-pi, pi] + 2 pi turns.
+    std::vector<std::int8_t> turns;
   };
   struct Value {
     double energy = 0.0;
     std::optional<double> rate;  ///< dE/dt, none at a flexion limit
     double largest_turn = 0.0;   ///< the largest change of a fold's angle from `near`
   };
+  /// The members' nets at t and their rates, and the corner nodes' positions
+  /// and rates from them, into `scratch`: the configuration of evaluate(t).
+  void nodes_at(double t, Scratch& scratch) const;
   /// E and dE/dt at t; `angles` gets the folds' angles continuous from `near`
   /// (the angles at a t close by; empty: the rest angles).
   Value evaluate(double t, const std::vector<double>& near, std::vector<double>& angles, Scratch& scratch) const;
+  /// The same with each fold's whole turns given (an earlier evaluation's
+  /// scratch.turns at t): the angles that evaluation gave, bit for bit.
+  Value evaluate_turned(double t, const std::vector<std::int8_t>& turns, std::vector<double>& angles,
+                        Scratch& scratch) const;
 
   /// The same with a scratch of its own (tests).
   double energy(double t, std::vector<double>& angles, const std::vector<double>& near = {}) const;
@@ -109,10 +115,12 @@ class FoldEnergy {
   const BarHingeModel& model() const { return model_; }
 
  private:
+  Value evaluate_from(double t, const double* near, std::vector<double>& angles, Scratch& s) const;
   const Design& design_;
   BarHingeModel model_;
   std::unique_ptr<FoldKernel> kernel_;
   std::vector<double> rest_angles_, weight_;  ///< weight: k L of each fold
+  std::vector<Assembly::NetPlace> places_;    ///< each node's member vertex in the canonical nets
 };
 
 }  // namespace phedra
