@@ -9,6 +9,9 @@
 #include "phedra/hinge_angle.h"
 #include "phedra/stiffness_modes.h"
 #include "phedra/energy_landscape.h"
+#include "phedra/homogenized_strain.h"
+#include "phedra/metamaterial_metrics.h"
+#include "phedra/mechanics_figures.h"
 #include "support/cli_run.h"
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 #include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
@@ -403,6 +406,41 @@ TEST_CASE("a bistable design: two minima and the barrier between them", "[mechan
     CHECK(s.energy >= 0.0);
     CHECK(s.rate.has_value() == (s.t != open.assembly.flexion_interval().lower.t && s.t != open.assembly.flexion_interval().upper.t));
   }
+}
+
+TEST_CASE("the energy landscape's lengths and forces are the strain's of every member vertex, on every shipped preset", "[mechanics]") {
+  // The landscape reads the strain from the corner nodes (each once, with the
+  // weights of the member vertices at it) where every vertex is at a node:
+  // against HomogenizedStrain::at from every vertex, and force = (dE/dt) / (dL/dt).
+  std::size_t checked = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
+    if (entry.path().extension() != ".json" || entry.path().filename() == "preset.schema.json") continue;
+    INFO(entry.path().filename().string());
+    const Design design = load_design(entry.path());
+    const Assembly& a = design.assembly;
+    EnergyOptions o;
+    o.rest_t = a.t_at_fraction(0.4);
+    o.samples = 21;
+    o.stiffness = default_stiffness(design);  // n5b8 unless a panel is not convex
+    const EnergyLandscape e = energy_landscape(design, o);
+    const HomogenizedStrain strain(a, o.axes);
+    const std::array<double, 3> at_star = axis_extents(a.evaluate(a.t_star()).members, strain.axes());
+    for (const EnergySample& s : e.samples) {
+      const HomogenizedStrain::State state = strain.at(s.t);
+      for (int k = 0; k < 3; ++k) {
+        REQUIRE(s.length[k].has_value() == state.stretch[k].has_value());
+        if (!s.length[k]) continue;
+        const double length = at_star[k] * *state.stretch[k];
+        CHECK(std::abs(*s.length[k] - length) <= 1e-12 * length);
+        if (!s.force[k]) continue;
+        REQUIRE(s.rate);
+        const double force = *s.rate / (length * *state.rate[k]);
+        CHECK(std::abs(*s.force[k] - force) <= 1e-9 * std::abs(force));
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 200);
 }
 
 TEST_CASE("the energy landscape at rest a hair inside a flexion limit: the rest state its minimum, no step past the limit", "[mechanics]") {

@@ -129,7 +129,7 @@ TEST_CASE("vertices written from the canonical nets, and the strain read from th
   // Assembly::write_vertices (the energy's nodes) against evaluate_rate's members, bit for bit, and
   // HomogenizedStrain from the nets against the one from the positions: every shipped preset, open and
   // closed members, every vertex, inside the interval and at a limit (no rates there).
-  std::size_t presets = 0;
+  std::size_t shipped = 0;
   for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
     if (entry.path().extension() != ".json" || entry.path().filename() == "preset.schema.json") continue;
     INFO(entry.path().filename().string());
@@ -166,7 +166,7 @@ TEST_CASE("vertices written from the canonical nets, and the strain read from th
         if (written.rate[k]) CHECK(std::abs(*nets.rate[k] - *written.rate[k]) <= 1e-11 * (1.0 + std::abs(*written.rate[k])));
       }
     }
-    ++presets;
+    ++shipped;
   }
-  CHECK(presets >= 8);
+  CHECK(shipped >= 8);
 }

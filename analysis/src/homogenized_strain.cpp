@@ -154,6 +154,28 @@ PHEDRA_CPU_CLONES Mat3 HomogenizedStrain::canonical_moment(const std::vector<Net
   return to_user * g + shift * reference_sum_.transpose();
 }
 
+Points HomogenizedStrain::weights(const std::vector<std::uint32_t>& point_of, std::size_t points) const {
+  if (point_of.size() != reference_.size()) {
+    throw Error(ExitCode::internal, "strain weights: " + std::to_string(point_of.size()) + " vertices, expected " +
+                                        std::to_string(reference_.size()));
+  }
+  Points out(points, Vec3::Zero());
+  for (std::size_t k = 0; k < point_of.size(); ++k) out.at(point_of[k]) += reference_[k];
+  return out;
+}
+
+PHEDRA_CPU_CLONES Mat3 HomogenizedStrain::weighted_moment(const Points& x, const Points& weights) const {
+  // sum over the vertices of (x - a) Y^T, the vertices at one point summed first (their Y into its weight).
+  Mat3 out = Mat3::Zero();
+  for (std::size_t q = 0; q < x.size(); ++q) out.noalias() += (x[q] - anchor_) * weights[q].transpose();
+  return out;
+}
+
+HomogenizedStrain::State HomogenizedStrain::state_of(const Points& x, const Points* rates, const Points& weights) const {
+  return state_from(weighted_moment(x, weights) * pseudo_inverse_,
+                    rates ? std::optional<Mat3>(weighted_moment(*rates, weights) * pseudo_inverse_) : std::nullopt);
+}
+
 HomogenizedStrain::State HomogenizedStrain::state_from(const Mat3& f, const std::optional<Mat3>& df) const {
   State s;
   for (int k = 0; k < 3; ++k) {

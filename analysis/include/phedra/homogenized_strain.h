@@ -22,6 +22,7 @@
 #include "phedra/design.h"
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -57,6 +58,14 @@ class HomogenizedStrain {
   /// The same from the members' canonical nets and their rates
   /// (Assembly::evaluate_canonical_rate), the positions never written out.
   State state_of(const std::vector<NetState>& states, const std::vector<NetState>* rates) const;
+  /// The moment's weights for fewer points: `point_of` gives, for every member
+  /// vertex (members in order, each in topology order), the point it is at
+  /// throughout the motion (coupled members' shared vertices: one point);
+  /// weight q sums the offsets at t* of the vertices at point q.
+  Points weights(const std::vector<std::uint32_t>& point_of, std::size_t points) const;
+  /// The same state from those points' positions (and rates) and their weights:
+  /// the sums over the vertices, each point once.
+  State state_of(const Points& x, const Points* rates, const Points& weights) const;
   /// The positions of the last evaluation (at(t) ends with t's).
   const AssemblyConfiguration& configuration() const { return configuration_; }
 
@@ -68,6 +77,7 @@ class HomogenizedStrain {
   Mat3 moment(const std::vector<Points>& members) const;
   /// The same from canonical nets (positions, or `rates`: their rates).
   Mat3 canonical_moment(const std::vector<NetState>& states, bool rates) const;
+  Mat3 weighted_moment(const Points& x, const Points& weights) const;
   State state_from(const Mat3& f, const std::optional<Mat3>& df) const;
   void evaluate(double t) const;
 
