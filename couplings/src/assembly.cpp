@@ -142,28 +142,33 @@ std::vector<Assembly::NetPlace> Assembly::net_places(std::span<const VertexRef> 
   std::vector<NetPlace> out;
   out.reserve(vertices.size());
   for (const VertexRef& v : vertices) {
+    const bool closed = members_[v.member].closed;
     const std::size_t columns = members_[v.member].topology.columns();
-    const std::size_t n = members_[v.member].closed ? columns + 1 : columns - 2;  // NetWriter::columns inverted
-    out.push_back({static_cast<std::uint32_t>(v.member), static_cast<std::uint32_t>(v.vertex / columns * n),
-                   static_cast<std::uint32_t>(v.vertex % columns)});
+    const std::size_t n = closed ? columns + 1 : columns - 2;  // NetWriter::columns inverted
+    const std::size_t i = v.vertex / columns, c = v.vertex % columns;
+    // NetWriter::canonical's choice of entry.
+    const std::size_t j = closed ? c : c == 0 ? 0 : c == n + 1 ? n - 1 : c - 1;
+    const std::uint32_t boundary = closed ? 0 : c == 0 ? 1 : c == n + 1 ? 2 : 0;
+    out.push_back({static_cast<std::uint32_t>(v.member), static_cast<std::uint32_t>(i * n + j), boundary});
   }
   return out;
 }
 
 void Assembly::write_vertices(const std::vector<NetState>& states, std::span<const NetPlace> places, Points& out,
                               NetWriter::Kind kind) const {
+  // What NetWriter::write computes for the entry, in the same order (the same bits).
   out.resize(places.size());
-  std::vector<NetWriter> writers;  // one a member (its turn and origin)
-  writers.reserve(members_.size());
-  for (std::size_t m = 0; m < members_.size(); ++m) {
-    writers.emplace_back(base_.frame(), members_[m].closed, states[m].apexes.size() - 1, std::span<Vec3>(), kind);
-  }
+  const Mat3 to_user = base_.frame().rotation().transpose();
+  const Vec3 origin = kind == NetWriter::Kind::positions ? base_.frame().origin() : Vec3::Zero();
   for (std::size_t k = 0; k < places.size(); ++k) {
     const NetPlace& p = places[k];
     const NetState& state = states[p.member];
-    out[k] = writers[p.member].user(NetWriter::canonical(members_[p.member].closed, state.apexes.size() - 1, p.column,
-                                                         state.apexes.data(), &state.axial[p.row_start],
-                                                         &state.general[p.row_start]));
+    Vec3 g = state.general[p.entry];
+    if (p.boundary != 0) {
+      const double apex = p.boundary == 1 ? state.apexes.front() : state.apexes.back();
+      g = g + (Vec3(0, 0, apex) - state.axial[p.entry]);
+    }
+    out[k] = origin + to_user * g;
   }
 }
 

@@ -86,9 +86,10 @@ class Assembly {
   /// out), without writing them: `rates` incomplete and false at a flexion limit.
   bool evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates) const;
   /// Where a member vertex is in its member's canonical nets: the member, the
-  /// first entry of its row (row times the net's columns) and its output column.
+  /// entry of the general net it is (or starts from), and for an open net's
+  /// boundary columns the apex it reaches (1: S_0, 2: S_n; 0: none).
   struct NetPlace {
-    std::uint32_t member = 0, row_start = 0, column = 0;
+    std::uint32_t member = 0, entry = 0, boundary = 0;
   };
   std::vector<NetPlace> net_places(std::span<const VertexRef> vertices) const;
   /// The user-frame positions (Kind::rates: rates) of the vertices at `places`
