@@ -1,6 +1,7 @@
 #include "phedra/energy_landscape.h"
 
 #include "fold_kernel.h"
+#include "vertex_nodes.h"
 #include "phedra/report_values.h"
 
 #include "phedra/errors.h"
@@ -11,11 +12,9 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
-#include <numeric>
 #include <thread>
 
 namespace phedra {
@@ -105,45 +104,6 @@ Point carried(const FoldEnergy& f, const Point& from, double t, FoldEnergy::Scra
   return carried(f, middle, t, scratch, depth + 1);
 }
 
-/// Each member vertex's corner node, when every vertex is at one throughout the
-/// motion (at the rest state and two more configurations, within 1e-9 of the
-/// model size: coupled members' shared vertices are one node): the strain then
-/// reads the nodes, each once (a quarter of the points of a coupled array).
-/// None when a vertex is at no node (the strain reads every vertex then).
-std::optional<std::vector<std::uint32_t>> vertex_nodes(const Assembly& a, const FoldEnergy& fold, double rest_t) {
-  const double lo = a.flexion_interval().lower.t, hi = a.flexion_interval().upper.t;
-  const std::array<double, 3> ts{rest_t, lo + 0.23 * (hi - lo), lo + 0.71 * (hi - lo)};
-  std::array<std::vector<Points>, 3> members;
-  std::array<Points, 3> nodes;
-  FoldEnergy::Scratch scratch;
-  for (std::size_t k = 0; k < ts.size(); ++k) {
-    members[k] = a.evaluate(ts[k]).members;
-    fold.nodes_at(ts[k], scratch);
-    nodes[k] = scratch.x;
-  }
-  const double tolerance = 1e-9 * a.model_size();
-  std::vector<std::uint32_t> by_x(nodes[0].size());
-  std::iota(by_x.begin(), by_x.end(), 0u);
-  std::sort(by_x.begin(), by_x.end(), [&](std::uint32_t p, std::uint32_t q) { return nodes[0][p].x() < nodes[0][q].x(); });
-  std::vector<std::uint32_t> out;
-  for (std::size_t m = 0; m < members[0].size(); ++m) {
-    for (std::size_t v = 0; v < members[0][m].size(); ++v) {
-      const double x = members[0][m][v].x();
-      auto it = std::lower_bound(by_x.begin(), by_x.end(), x - tolerance,
-                                 [&](std::uint32_t n, double bound) { return nodes[0][n].x() < bound; });
-      std::optional<std::uint32_t> found;
-      for (; it != by_x.end() && nodes[0][*it].x() <= x + tolerance && !found; ++it) {
-        bool near = true;
-        for (std::size_t k = 0; k < ts.size() && near; ++k) near = (nodes[k][*it] - members[k][m][v]).norm() <= tolerance;
-        if (near) found = *it;
-      }
-      if (!found) return std::nullopt;
-      out.push_back(*found);
-    }
-  }
-  return out;
-}
-
 /// Runs `left` and `right` (on two threads for large work, not in WebAssembly).
 void both(bool large, const std::function<void()>& left, const std::function<void()>& right) {
 #ifndef __EMSCRIPTEN__
@@ -207,7 +167,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     std::optional<double> rate;
     std::vector<std::int8_t> turns;
   };
-  const std::optional<std::vector<std::uint32_t>> at_nodes = vertex_nodes(a, fold, options.rest_t);
+  const std::optional<std::vector<std::uint32_t>> at_nodes = vertex_nodes(fold, options.rest_t);
   const Points strain_weights = at_nodes ? strain.weights(*at_nodes, fold.model().corner_node_count()) : Points{};
   std::vector<Kept> points(ts.size());
   out.samples.resize(ts.size());

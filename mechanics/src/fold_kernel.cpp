@@ -77,7 +77,8 @@ PHEDRA_CPU_CLONES void FoldKernel::panel_frames(const Points& p, const Points* v
   }
 }
 
-inline void FoldKernel::block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames,
+// Inlined into both callers, so that it is compiled in each of their clones (x86-64-v3 and the baseline).
+[[gnu::always_inline]] inline void FoldKernel::block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames,
                               double* theta, double* rate, double* y, double* x) const {
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t h = h0 + i;
@@ -97,7 +98,11 @@ inline void FoldKernel::block(std::size_t h0, std::size_t count, const Points& p
 }
 
 namespace {
-constexpr std::size_t block_size = 256;  // four arrays of it: 8 KiB, in the first cache level
+// Four arrays of it: 8 KiB, in the first cache level. A multiple of 4: atan2_many
+// takes four at a time and the rest one by one (the two round differently), so
+// every fold gets the same one in angles() and energy(), whatever the block.
+constexpr std::size_t block_size = 256;
+static_assert(block_size % 4 == 0);
 }  // namespace
 
 PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate,
@@ -105,7 +110,7 @@ PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, doub
   panel_frames(p, v, frames);
   double y[block_size], x[block_size];
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
-    block(h0, std::min(block_size, size() - h0), p, v, frames.data(), theta + h0, rate + h0, y, x);
+    block(h0, std::min(block_size, size() - h0), p, v, frames.data(), theta + h0, v ? rate + h0 : nullptr, y, x);
   }
 }
 
@@ -116,10 +121,10 @@ PHEDRA_CPU_CLONES FoldKernel::Sums FoldKernel::energy(const Points& p, const Poi
   const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
   const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
   double y[block_size], x[block_size], theta[block_size], rate[block_size];
-  // Four partial sums of each (the compiler's vector lanes, and no chain of
-  // additions each waiting for the one before): summed at the end.
+  // Four partial sums of each (no chain of additions each waiting for the one
+  // before): summed at the end.
   constexpr std::size_t lanes = 4;
-  double energy[lanes] = {}, rates[lanes] = {}, largest[lanes] = {};
+  double energy_sum[lanes] = {}, rate_sum[lanes] = {}, largest[lanes] = {};
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
     const std::size_t count = std::min(block_size, size() - h0);
     block(h0, count, p, v, frames.data(), theta, rate, y, x);
@@ -141,14 +146,14 @@ PHEDRA_CPU_CLONES FoldKernel::Sums FoldKernel::energy(const Points& p, const Poi
         if (reference) largest[l] = std::max(largest[l], std::abs(continuous - reference[h]));
         angles[h] = continuous;
         const double d = continuous - rest[h], wd = weight[h] * d;
-        energy[l] += wd * d;
-        rates[l] += wd * rate[i + l];
+        energy_sum[l] += wd * d;
+        rate_sum[l] += wd * rate[i + l];
       }
     }
   }
   Sums out;
-  out.energy = 0.5 * ((energy[0] + energy[1]) + (energy[2] + energy[3]));
-  out.rate = (rates[0] + rates[1]) + (rates[2] + rates[3]);
+  out.energy = 0.5 * ((energy_sum[0] + energy_sum[1]) + (energy_sum[2] + energy_sum[3]));
+  out.rate = (rate_sum[0] + rate_sum[1]) + (rate_sum[2] + rate_sum[3]);
   out.largest = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
   return out;
 }

@@ -15,10 +15,11 @@
 // enough. A panel's normal and that turn come once a panel from its diagonals
 // (a triangle: two sides), not twice a fold; no n5b8 centre is needed.
 //
-// The energy's pass (energy()) runs over the folds in blocks of a few hundred:
-// a block's angles, atan2 and the energy's sums while they are in the first
-// cache level, so that a fold's numbers cross memory once (about 60 bytes a
-// fold, where separate passes over whole arrays moved about 130).
+// The energy's pass (energy()) runs over the folds in blocks of 256: a block's
+// angles, their atan2, the continuity and the energy's sums while the block is
+// in the first cache level, and no whole-array scratch (measured: no faster
+// than separate passes, the kernel being bound by its arithmetic and scalar
+// loads, about 13 cycles a fold; docs/performance.md).
 
 #include "phedra/bar_hinge_model.h"
 
@@ -39,8 +40,8 @@ class FoldKernel {
 
   struct Sums {
     double energy = 0.0;   ///< sum of 1/2 w (theta - rest)^2
-    double rate = 0.0;     ///< sum of w (theta - rest) d theta / dt (with rates)
-    double largest = 0.0;  ///< the largest |theta - reference|
+    double rate = 0.0;     ///< sum of w (theta - rest) d theta / dt (with rates; 0 without)
+    double largest = 0.0;  ///< the largest |theta - reference| (0 with given turns)
   };
   /// Each fold's angle made continuous: theta + 2 pi turns, turns the whole number
   /// that brings it nearest `reference` (or, `reference` null, the given `turns`),
@@ -52,7 +53,7 @@ class FoldKernel {
  private:
   /// The panels' unit normals and turns into `frames` (6 numbers a panel).
   void panel_frames(const Points& p, const Points* v, std::vector<double>& frames) const;
-  /// Folds h0 .. h0 + count - 1: theta, and (v not null) the rates.
+  /// Folds h0 .. h0 + count - 1: theta, and (v not null) the rates (`rate` may be null without).
   void block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames, double* theta,
              double* rate, double* y, double* x) const;
 

@@ -30,7 +30,8 @@ struct AssemblyConfiguration {
   double t = 0.0;
   std::vector<Points> members;
   std::vector<ClosureGap> closure;
-  /// Scratch of evaluate (the members' canonical nets, and their rates), kept between calls.
+  /// Scratch of evaluate (the members' canonical nets) and of evaluate_rate (their
+  /// rates too), kept between calls.
   std::vector<NetState> states, rate_states;
 };
 

@@ -33,9 +33,6 @@ class NetWriter {
     if (c == n + 1) return general[n - 1] + (Vec3(0, 0, s[n]) - axial[n - 1]);
     return general[c - 1];
   }
-  /// The canonical frame's point p in the user's frame (a rate: turned only).
-  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
-
   /// Row i from the apexes s[0..n], the axial row and the general row (n entries each).
   void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
     if (closed_) {
@@ -50,6 +47,7 @@ class NetWriter {
   }
 
  private:
+  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
   Mat3 to_user_;
   Vec3 origin_;
   bool closed_;

@@ -82,7 +82,8 @@ class FoldEnergy {
   FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options);
   ~FoldEnergy();
 
-  /// What one evaluation needs: the configuration and rates at t (read after it).
+  /// What one evaluation needs: the members' nets at t and their rates, the corner
+  /// nodes' positions and rates (read after it), the kernel's scratch.
   struct Scratch {
     std::vector<NetState> states, rates;  ///< the members' canonical nets at t and their rates
     bool finite = false;  ///< the rates exist (not at a flexion limit)
@@ -113,6 +114,7 @@ class FoldEnergy {
                                                            const std::vector<double>& near = {}) const;
   const std::vector<double>& rest_angles() const { return rest_angles_; }
   const BarHingeModel& model() const { return model_; }
+  const Design& design() const { return design_; }
 
  private:
   Value evaluate_from(double t, const double* near, std::vector<double>& angles, Scratch& s) const;
