@@ -153,9 +153,21 @@ TEST_CASE("vertices written from the canonical nets, and the strain read from th
       Points x, v;
       a.write_vertices(states, places, x);
       if (finite) a.write_vertices(state_rates, places, v, NetWriter::Kind::rates);
+      // Without the closed members' closure columns (the energy's evaluation): the same vertices.
+      std::vector<NetState> open_states, open_rates;
+      CHECK(a.evaluate_canonical_rate(t, open_states, open_rates, false) == finite);
+      Points x_open, v_open;
+      a.write_vertices(open_states, places, x_open);
+      if (finite) a.write_vertices(open_rates, places, v_open, NetWriter::Kind::rates);
       for (std::size_t k = 0; k < every.size(); ++k) {
         REQUIRE(x[k] == c.members[every[k].member][every[k].vertex]);
+        REQUIRE(x_open[k] == x[k]);
         if (finite) REQUIRE(v[k] == rates[every[k].member][every[k].vertex]);
+        if (finite) REQUIRE(v_open[k] == v[k]);
+      }
+      const HomogenizedStrain::State from_open = strain.state_of(open_states, finite ? &open_rates : nullptr);
+      for (int k = 0; k < 3; ++k) {
+        if (from_open.stretch[k]) CHECK(*from_open.stretch[k] == *strain.state_of(states, nullptr).stretch[k]);
       }
       const HomogenizedStrain::State written = strain.state_of(c, finite ? &rates : nullptr);
       const HomogenizedStrain::State nets = strain.state_of(states, finite ? &state_rates : nullptr);

@@ -112,15 +112,16 @@ void Assembly::evaluate_on(double t, const std::vector<bool>* flipped, AssemblyC
   write_configuration(out);
 }
 
-bool Assembly::evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates) const {
+bool Assembly::evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates,
+                                       bool closure) const {
   states.resize(members_.size());
   rates.resize(members_.size());
   const bool finite = base_.evaluate_canonical_rate(t, states[0], rates[0]);
   for (std::size_t m = 1; m < members_.size(); ++m) {
     const std::size_t parent = members_[m].seeded->seed().parent;
     const std::size_t columns = states[parent].apexes.size() - 1;
-    members_[m].seeded->evaluate(states[parent], columns, states[m]);
-    if (finite) members_[m].seeded->evaluate(rates[parent], columns, rates[m]);
+    members_[m].seeded->evaluate(states[parent], columns, states[m], closure);
+    if (finite) members_[m].seeded->evaluate(rates[parent], columns, rates[m], closure);
   }
   return finite;
 }

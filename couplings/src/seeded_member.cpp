@@ -80,8 +80,9 @@ SeededMember::SeededMember(const MemberSpec& spec, const NetState& parent, std::
   }
 }
 
-void SeededMember::evaluate(const NetState& parent, std::size_t parent_columns, NetState& out) const {
+void SeededMember::evaluate(const NetState& parent, std::size_t parent_columns, NetState& out, bool closure) const {
   const std::size_t n = motion_.columns();
+  const std::size_t count = closed_ && !closure ? n - 1 : n;  // the columns computed in rows past the first
   const std::size_t rows = motion_.rows();
   const std::size_t k = seed_.vertex_line;
   out.axial.resize(rows * n);
@@ -94,9 +95,9 @@ void SeededMember::evaluate(const NetState& parent, std::size_t parent_columns, 
     Vec3* axial = &out.axial[i * n];
     Vec3* general = &out.general[i * n];
     axial[0] = parent.axial[i * parent_columns + k];
-    motion_.fill_row(i, out.apexes.data(), axial);
+    motion_.fill_row(i, out.apexes.data(), axial, count);
     general[0] = parent.general[i * parent_columns + k];
-    motion_.advance_general_row(i, axial - n, axial, general - n, general, 1);
+    motion_.advance_general_row(i, axial - n, axial, general - n, general, 1, count);
   }
 }
 

@@ -35,7 +35,8 @@ FoldEnergy::~FoldEnergy() = default;
 
 void FoldEnergy::nodes_at(double t, Scratch& s) const {
   // Only the corner nodes (the kernel needs no centre), straight from the nets: no member's vertices written out.
-  s.finite = design_.assembly.evaluate_canonical_rate(t, s.states, s.rates);
+  // (No closed member's closure column: neither the nodes nor the strain read it.)
+  s.finite = design_.assembly.evaluate_canonical_rate(t, s.states, s.rates, false);
   design_.assembly.write_vertices(s.states, places_, s.x);
   if (s.finite) design_.assembly.write_vertices(s.rates, places_, s.v, NetWriter::Kind::rates);
 }

@@ -85,7 +85,10 @@ class Assembly {
   bool evaluate_rate(double t, AssemblyConfiguration& out, std::vector<Points>& rates) const;
   /// The members' canonical nets at t and their rates (what evaluate_rate writes
   /// out), without writing them: `rates` incomplete and false at a flexion limit.
-  bool evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates) const;
+  /// Without `closure`, the closed members' (not the base's) last columns, which
+  /// repeat their first ones, are not computed (SeededMember::evaluate).
+  bool evaluate_canonical_rate(double t, std::vector<NetState>& states, std::vector<NetState>& rates,
+                               bool closure = true) const;
   /// Where a member vertex is in its member's canonical nets: the member, the
   /// entry of the general net it is (or starts from), and for an open net's
   /// boundary columns the apex it reaches (1: S_0, 2: S_n; 0: none).

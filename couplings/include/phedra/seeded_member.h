@@ -51,8 +51,10 @@ class SeededMember {
   const std::vector<Sign>& signs() const { return signs_; }
   const NetState& reference_state() const { return reference_; }
 
-  /// The member's state at t from its parent's state at t.
-  void evaluate(const NetState& parent, std::size_t parent_columns, NetState& out) const;
+  /// The member's state at t from its parent's state at t. Without `closure`, a
+  /// closed member's last column (its first again, where the closure is measured)
+  /// is not computed: its rows past the first keep whatever they held.
+  void evaluate(const NetState& parent, std::size_t parent_columns, NetState& out, bool closure = true) const;
 
  private:
   Seed seed_;

@@ -8,6 +8,8 @@
 #include "phedra/parallel_net.h"
 
 #include <functional>
+#include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace phedra {
@@ -60,10 +62,12 @@ class NetMotion {
   /// d/dt it gives the rates.
   void complete_first_row(double s0, double s1, const Vec3& first, double* s, Vec3* row) const;
 
-  /// Row i of the axial net from row[0] and the apexes: A[i][j+1] = S_{j+1} + rho (A[i][j] - S_{j+1}).
-  void fill_row(std::size_t i, const double* s, Vec3* row) const {
+  /// Row i of the axial net from row[0] and the apexes: A[i][j+1] = S_{j+1} + rho (A[i][j] - S_{j+1}),
+  /// columns 1 .. count - 1 (count at most n: all of them).
+  void fill_row(std::size_t i, const double* s, Vec3* row, std::size_t count = SIZE_MAX) const {
     const double* rho = row_ratios(i);
-    for (std::size_t j = 0; j + 1 < columns_; ++j) {
+    const std::size_t end = std::min(count, columns_);
+    for (std::size_t j = 0; j + 1 < end; ++j) {
       const double c = s[j + 1];
       const Vec3& a = row[j];
       row[j + 1] = Vec3(rho[j] * a.x(), rho[j] * a.y(), c + rho[j] * (a.z() - c));
@@ -71,11 +75,12 @@ class NetMotion {
   }
 
   /// Row i (>= 1) of the general net: G[i][j] = G[i-1][j] + q_{i,j} (A[i][j] - A[i-1][j]),
-  /// for columns first..n-1 (first = 1 when column 0 is given).
+  /// for columns first .. count - 1 (first = 1 when column 0 is given; count at most n).
   void advance_general_row(std::size_t i, const Vec3* previous_axial, const Vec3* axial, const Vec3* previous_general,
-                           Vec3* general, std::size_t first = 0) const {
+                           Vec3* general, std::size_t first = 0, std::size_t count = SIZE_MAX) const {
     const double* q = &scales_[i * columns_];
-    for (std::size_t j = first; j < columns_; ++j) {
+    const std::size_t end = std::min(count, columns_);
+    for (std::size_t j = first; j < end; ++j) {
       general[j] = previous_general[j] + q[j] * (axial[j] - previous_axial[j]);
     }
   }
