@@ -292,6 +292,53 @@ TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and i
   CHECK(folds > 5000);
 }
 
+TEST_CASE("the energy's samples evaluated four together equal each evaluated alone, bit for bit", "[mechanics]") {
+  // FoldEnergy::evaluate_lanes (the landscape's walk, SIMD across samples) against
+  // evaluate() of each lane from the lane before it: E, dE/dt, the largest turn,
+  // every angle and turn; on every shipped preset, both panel models, steps small
+  // and large (folds turning past half a turn between lanes).
+  std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
+  for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
+    if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") files.push_back(entry.path());
+  }
+  std::size_t lanes_checked = 0;
+  for (const auto& file : files) {
+    const Design design = load_design(file);
+    for (const PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
+      StiffnessOptions options;
+      options.panels = panels;
+      const double rest = design.assembly.t_at_fraction(0.5);
+      if (panels == PanelModel::n5b8 && !n5b8_models(design, rest)) continue;
+      const FoldEnergy fold(design, rest, options);
+      for (const double step : {0.01, 0.2}) {
+        INFO(file.filename().string() << " " << to_string(panels) << " step " << step);
+        std::array<double, FoldEnergy::lanes> ts;
+        for (std::size_t l = 0; l < ts.size(); ++l) ts[l] = design.assembly.t_at_fraction(0.1 + step * static_cast<double>(l));
+        FoldEnergy::Scratch together, alone;
+        for (std::size_t l = 0; l < ts.size(); ++l) REQUIRE(fold.load_lane(ts[l], l, together));
+        std::vector<double> near;
+        fold.evaluate(design.assembly.t_at_fraction(0.08), {}, near, alone);
+        std::array<std::vector<double>, FoldEnergy::lanes> angles;
+        const auto values = fold.evaluate_lanes(near, angles, together);
+        for (std::size_t l = 0; l < ts.size(); ++l) {
+          std::vector<double> single;
+          const FoldEnergy::Value v = fold.evaluate(ts[l], near, single, alone);
+          CHECK(values[l].energy == v.energy);
+          REQUIRE(values[l].rate);
+          REQUIRE(v.rate);
+          CHECK(*values[l].rate == *v.rate);
+          CHECK(values[l].largest_turn == v.largest_turn);
+          CHECK(angles[l] == single);
+          CHECK(together.lane_turns[l] == alone.turns);
+          near = single;
+          ++lanes_checked;
+        }
+      }
+    }
+  }
+  CHECK(lanes_checked > 40);
+}
+
 TEST_CASE("the stiffness's block assembly equals a dense sum of the same blocks, repeated nodes and empty columns too", "[mechanics]") {
   std::mt19937_64 rng(3606);
   for (int round = 0; round < 20; ++round) {

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -39,6 +40,46 @@ void FoldEnergy::nodes_at(double t, Scratch& s) const {
   s.finite = design_.assembly.evaluate_canonical_rate(t, s.states, s.rates, false);
   design_.assembly.write_vertices(s.states, places_, s.x);
   if (s.finite) design_.assembly.write_vertices(s.rates, places_, s.v, NetWriter::Kind::rates);
+}
+
+bool FoldEnergy::load_lane(double t, std::size_t lane, Scratch& s) const {
+  nodes_at(t, s);
+  const std::size_t n = s.x.size();
+  s.lane_x.resize(3 * lanes * n);
+  s.lane_v.resize(3 * lanes * n);
+  double* x = s.lane_x.data() + lane;
+  double* v = s.lane_v.data() + lane;
+  for (std::size_t i = 0; i < n; ++i, x += 3 * lanes, v += 3 * lanes) {
+    for (int c = 0; c < 3; ++c) x[c * lanes] = s.x[i][c];
+    if (!s.finite) continue;
+    for (int c = 0; c < 3; ++c) v[c * lanes] = s.v[i][c];
+  }
+  return s.finite;
+}
+
+std::array<FoldEnergy::Value, FoldEnergy::lanes> FoldEnergy::evaluate_lanes(
+    const std::vector<double>& near, std::array<std::vector<double>, lanes>& angles, Scratch& s) const {
+  static_assert(lanes == FoldKernel::lanes && lanes == std::tuple_size_v<decltype(Scratch::lane_turns)>);
+  const std::size_t n = rest_angles_.size();
+  if (near.size() != n) throw Error(ExitCode::internal, "energy: the samples evaluated together need the angles near them");
+  std::array<double*, lanes> angle_out;
+  std::array<std::int8_t*, lanes> turn_out;
+  for (std::size_t l = 0; l < lanes; ++l) {
+    angles[l].resize(n);
+    s.lane_turns[l].resize(n);
+    angle_out[l] = angles[l].data();
+    turn_out[l] = s.lane_turns[l].data();
+  }
+  std::array<FoldKernel::Sums, lanes> sums;
+  kernel_->energy_lanes(s.lane_x.data(), s.lane_v.data(), near.data(), rest_angles_.data(), weight_.data(),
+                        angle_out.data(), turn_out.data(), sums.data(), s.lane_frames);
+  std::array<Value, lanes> out;
+  for (std::size_t l = 0; l < lanes; ++l) {
+    out[l].energy = sums[l].energy;
+    out[l].rate = sums[l].rate;
+    out[l].largest_turn = sums[l].largest;
+  }
+  return out;
 }
 
 FoldEnergy::Value FoldEnergy::evaluate_from(double t, const double* near, std::vector<double>& angles,
@@ -172,26 +213,32 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   const Points strain_weights = at_nodes ? strain.weights(*at_nodes, fold.model().corner_node_count()) : Points{};
   std::vector<Kept> points(ts.size());
   out.samples.resize(ts.size());
-  auto record = [&](std::size_t i, const Point& p, const FoldEnergy::Scratch& scratch) {
+  // The strain of the configuration an evaluation (or load_lane) leaves in the scratch.
+  auto strain_of = [&](const FoldEnergy::Scratch& scratch) {
+    return at_nodes ? strain.state_of(scratch.x, scratch.finite ? &scratch.v : nullptr, strain_weights)
+                    : strain.state_of(scratch.states, scratch.finite ? &scratch.rates : nullptr);
+  };
+  auto record_state = [&](std::size_t i, double t, double energy, std::optional<double> rate,
+                          const std::vector<std::int8_t>& turns, const HomogenizedStrain::State& state) {
     Kept& kept = points[i];
-    kept.t = p.t;
-    kept.energy = p.energy;
-    kept.rate = p.rate;
-    kept.turns = scratch.turns;  // the evaluation at p.t that gave p.angles
+    kept.t = t;
+    kept.energy = energy;
+    kept.rate = rate;
+    kept.turns = turns;  // the evaluation at t that gave its angles
     EnergySample& s = out.samples[i];
-    s.t = p.t;
-    s.energy = p.energy;
-    s.rate = p.rate;
-    const HomogenizedStrain::State state =
-        at_nodes ? strain.state_of(scratch.x, scratch.finite ? &scratch.v : nullptr, strain_weights)
-                 : strain.state_of(scratch.states, scratch.finite ? &scratch.rates : nullptr);
+    s.t = t;
+    s.energy = energy;
+    s.rate = rate;
     for (int k = 0; k < 3; ++k) {
       if (!state.stretch[k]) continue;
       s.length[k] = at_star[k] * *state.stretch[k];
-      if (!p.rate || !state.rate[k]) continue;
+      if (!rate || !state.rate[k]) continue;
       const double d_length = *s.length[k] * *state.rate[k];
-      if (std::abs(d_length) * (hi - lo) > 1e-9 * *s.length[k]) s.force[k] = *p.rate / d_length;
+      if (std::abs(d_length) * (hi - lo) > 1e-9 * *s.length[k]) s.force[k] = *rate / d_length;
     }
+  };
+  auto record = [&](std::size_t i, const Point& p, const FoldEnergy::Scratch& scratch) {
+    record_state(i, p.t, p.energy, p.rate, scratch.turns, strain_of(scratch));
   };
   Point at_rest{options.rest_t, 0.0, std::nullopt, {}};
   {
@@ -210,11 +257,43 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   // else (a fold turned past a half turn on the way) it is walked again from there.
   const bool large = options.two_threads && static_cast<double>(out.folds) * static_cast<double>(ts.size()) > 2e5;
   // Samples rest + direction k for k = first..last, carried from `from`; the last point.
+  // Four at a time (FoldEnergy::evaluate_lanes, each lane carried from the one
+  // before: what one at a time gives, bit for bit), one at a time where a sample
+  // of the four is a flexion limit, for the last few, and from a sample where a
+  // fold turned by more than half a radian since the one before (carried: the
+  // step halved).
   auto walk = [&](Point from, int direction, std::size_t first, std::size_t last, FoldEnergy::Scratch& scratch) {
-    for (std::size_t k = first; k <= last; ++k) {
-      const std::size_t i = direction > 0 ? rest + k : rest - k;
-      from = carried(fold, from, ts[i], scratch);
-      record(i, from, scratch);
+    constexpr std::size_t lanes = FoldEnergy::lanes;
+    auto index = [&](std::size_t k) { return direction > 0 ? rest + k : rest - k; };
+    std::array<std::vector<double>, lanes> lane_angles;
+    std::array<HomogenizedStrain::State, lanes> states;
+    for (std::size_t k = first; k <= last;) {
+      std::size_t loaded = 0;
+      if (last - k + 1 >= lanes && !from.angles.empty()) {
+        while (loaded < lanes && fold.load_lane(ts[index(k + loaded)], loaded, scratch)) {
+          states[loaded] = strain_of(scratch);
+          ++loaded;
+        }
+      }
+      if (loaded == lanes) {
+        const std::array<FoldEnergy::Value, lanes> values = fold.evaluate_lanes(from.angles, lane_angles, scratch);
+        std::size_t l = 0;
+        for (; l < lanes && values[l].largest_turn <= 0.5; ++l) {
+          record_state(index(k + l), ts[index(k + l)], values[l].energy, values[l].rate, scratch.lane_turns[l],
+                       states[l]);
+        }
+        if (l > 0) {
+          from.t = ts[index(k + l - 1)];
+          from.energy = values[l - 1].energy;
+          from.rate = values[l - 1].rate;
+          std::swap(from.angles, lane_angles[l - 1]);
+          k += l;
+        }
+        if (l == lanes) continue;
+      }
+      from = carried(fold, from, ts[index(k)], scratch);
+      record(index(k), from, scratch);
+      ++k;
     }
     return from;
   };

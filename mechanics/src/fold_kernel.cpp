@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <type_traits>
 
 namespace phedra {
 namespace {
@@ -50,112 +52,184 @@ FoldKernel::FoldKernel(const BarHingeModel& model) {
   }
 }
 
-PHEDRA_CPU_CLONES void FoldKernel::panel_frames(const Points& p, const Points* v, std::vector<double>& frames) const {
-  // Each panel's unit normal and (with rates) its angular velocity across the normal: 6 numbers a panel.
+namespace {
+
+/// Four doubles, one a sample, in one AVX2 register where there is one (GCC's and
+/// Clang's vector extension; read and written with memcpy: unaligned). A
+/// sample's numbers go through the same operations, in the same order, as the
+/// single-sample kernel's (Lane = double): the same bits.
+typedef double Four __attribute__((vector_size(4 * sizeof(double))));
+template <std::size_t L>
+using Lane = std::conditional_t<L == 1, double, Four>;
+static_assert(FoldKernel::lanes == 4);
+
+}  // namespace
+
+// Inlined into the callers, so that it is compiled in each of their clones (x86-64-v3 and the baseline).
+template <std::size_t L>
+[[gnu::always_inline]] inline void FoldKernel::panel_frames(const double* p, const double* v, double* f) const {
+  // Each panel's unit normal and (with rates) its angular velocity across the normal: 6 numbers a panel (a lane each).
+  using T = Lane<L>;
   const std::size_t panels = panel_a_.size();
-  frames.resize(6 * panels);
-  double* f = frames.data();
-  for (std::size_t q = 0; q < panels; ++q, f += 6) {
-    const Vec3& a = p[panel_a_[q]];
-    const Vec3& b = p[panel_b_[q]];
-    const Vec3 d1 = p[panel_c_[q]] - a, d2 = p[panel_d_[q]] - b;
+  for (std::size_t q = 0; q < panels; ++q, f += 6 * L) {
+    const double* a = p + 3 * L * panel_a_[q];
+    const double* b = p + 3 * L * panel_b_[q];
+    const double* c = p + 3 * L * panel_c_[q];
+    const double* d = p + 3 * L * panel_d_[q];
+    T ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz;
+    std::memcpy(&ax, a, sizeof(T)), std::memcpy(&ay, a + L, sizeof(T)), std::memcpy(&az, a + 2 * L, sizeof(T));
+    std::memcpy(&bx, b, sizeof(T)), std::memcpy(&by, b + L, sizeof(T)), std::memcpy(&bz, b + 2 * L, sizeof(T));
+    std::memcpy(&cx, c, sizeof(T)), std::memcpy(&cy, c + L, sizeof(T)), std::memcpy(&cz, c + 2 * L, sizeof(T));
+    std::memcpy(&dx, d, sizeof(T)), std::memcpy(&dy, d + L, sizeof(T)), std::memcpy(&dz, d + 2 * L, sizeof(T));
+    const T d1x = cx - ax, d1y = cy - ay, d1z = cz - az, d2x = dx - bx, d2y = dy - by, d2z = dz - bz;
     const double inverse = inverse_normal_[q];  // 1 / |d1 x d2|: the panel is rigid
-    const Vec3 unit = inverse * d1.cross(d2);
-    f[0] = unit.x();
-    f[1] = unit.y();
-    f[2] = unit.z();
+    const T ux = inverse * (d1y * d2z - d1z * d2y), uy = inverse * (d1z * d2x - d1x * d2z),
+            uz = inverse * (d1x * d2y - d1y * d2x);
+    std::memcpy(f, &ux, sizeof(T)), std::memcpy(f + L, &uy, sizeof(T)), std::memcpy(f + 2 * L, &uz, sizeof(T));
     if (!v) continue;
     // The panel turns rigidly (the motion is isometric) with some w: its normal's
     // rate is w x unit, so unit x (that rate) is w less its part along the normal,
     // and that part is across every hinge of the panel (they lie in its plane):
     // it adds nothing to a fold's rate. unit x (rate of d1 x d2) / |d1 x d2| is the rest.
-    const Vec3 dn = ((*v)[panel_c_[q]] - (*v)[panel_a_[q]]).cross(d2) + d1.cross((*v)[panel_d_[q]] - (*v)[panel_b_[q]]);
-    const Vec3 turning = inverse * unit.cross(dn);
-    f[3] = turning.x();
-    f[4] = turning.y();
-    f[5] = turning.z();
+    a = v + 3 * L * panel_a_[q], b = v + 3 * L * panel_b_[q], c = v + 3 * L * panel_c_[q], d = v + 3 * L * panel_d_[q];
+    std::memcpy(&ax, a, sizeof(T)), std::memcpy(&ay, a + L, sizeof(T)), std::memcpy(&az, a + 2 * L, sizeof(T));
+    std::memcpy(&bx, b, sizeof(T)), std::memcpy(&by, b + L, sizeof(T)), std::memcpy(&bz, b + 2 * L, sizeof(T));
+    std::memcpy(&cx, c, sizeof(T)), std::memcpy(&cy, c + L, sizeof(T)), std::memcpy(&cz, c + 2 * L, sizeof(T));
+    std::memcpy(&dx, d, sizeof(T)), std::memcpy(&dy, d + L, sizeof(T)), std::memcpy(&dz, d + 2 * L, sizeof(T));
+    const T e1x = cx - ax, e1y = cy - ay, e1z = cz - az, e2x = dx - bx, e2y = dy - by, e2z = dz - bz;
+    // dn = e1 x d2 + d1 x e2 (e: the diagonals' rates)
+    const T nx = (e1y * d2z - e1z * d2y) + (d1y * e2z - d1z * e2y);
+    const T ny = (e1z * d2x - e1x * d2z) + (d1z * e2x - d1x * e2z);
+    const T nz = (e1x * d2y - e1y * d2x) + (d1x * e2y - d1y * e2x);
+    const T wx = inverse * (uy * nz - uz * ny), wy = inverse * (uz * nx - ux * nz), wz = inverse * (ux * ny - uy * nx);
+    std::memcpy(f + 3 * L, &wx, sizeof(T)), std::memcpy(f + 4 * L, &wy, sizeof(T)), std::memcpy(f + 5 * L, &wz, sizeof(T));
   }
 }
 
-// Inlined into both callers, so that it is compiled in each of their clones (x86-64-v3 and the baseline).
-[[gnu::always_inline]] inline void FoldKernel::block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames,
-                              double* theta, double* rate, double* y, double* x) const {
+template <std::size_t L>
+[[gnu::always_inline]] inline void FoldKernel::block(std::size_t h0, std::size_t count, const double* p, bool rates,
+                                                     const double* frames, double* theta, double* rate, double* y,
+                                                     double* x) const {
+  using T = Lane<L>;
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t h = h0 + i;
-    const double* fa = frames + 6 * first_[h];
-    const double* fb = frames + 6 * second_[h];
-    const Vec3 na(fa[0], fa[1], fa[2]), nb(fb[0], fb[1], fb[2]);
+    const double* fa = frames + 6 * L * first_[h];
+    const double* fb = frames + 6 * L * second_[h];
+    const double* pk = p + 3 * L * k_[h];
+    const double* pj = p + 3 * L * j_[h];
+    T ax, ay, az, bx, by, bz, kx, ky, kz, jx, jy, jz;
+    std::memcpy(&ax, fa, sizeof(T)), std::memcpy(&ay, fa + L, sizeof(T)), std::memcpy(&az, fa + 2 * L, sizeof(T));
+    std::memcpy(&bx, fb, sizeof(T)), std::memcpy(&by, fb + L, sizeof(T)), std::memcpy(&bz, fb + 2 * L, sizeof(T));
+    std::memcpy(&kx, pk, sizeof(T)), std::memcpy(&ky, pk + L, sizeof(T)), std::memcpy(&kz, pk + 2 * L, sizeof(T));
+    std::memcpy(&jx, pj, sizeof(T)), std::memcpy(&jy, pj + L, sizeof(T)), std::memcpy(&jz, pj + 2 * L, sizeof(T));
     // With n_B's sign s and e = r_kj / |r_kj|: y = e . (n_A x s n_B) = (s / |r_kj|) r_kj . (n_A x n_B).
     const double scaled = signed_inverse_length_[h];
-    const Vec3 r = p[k_[h]] - p[j_[h]];
-    y[i] = scaled * r.dot(na.cross(nb));
-    x[i] = std::copysign(1.0, scaled) * na.dot(nb);
-    if (!v) continue;
+    const T rx = kx - jx, ry = ky - jy, rz = kz - jz;
+    const T cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const T yy = scaled * ((rx * cx + ry * cy) + rz * cz);
+    const T xx = std::copysign(1.0, scaled) * ((ax * bx + ay * by) + az * bz);
+    std::memcpy(y + L * i, &yy, sizeof(T)), std::memcpy(x + L * i, &xx, sizeof(T));
+    if (!rates) continue;
     // d theta / dt: the panels' relative turning rate about the hinge (e runs j to k).
-    rate[i] = std::abs(scaled) * r.dot(Vec3(fb[3] - fa[3], fb[4] - fa[4], fb[5] - fa[5]));
+    T wax, way, waz, wbx, wby, wbz;
+    std::memcpy(&wax, fa + 3 * L, sizeof(T)), std::memcpy(&way, fa + 4 * L, sizeof(T)), std::memcpy(&waz, fa + 5 * L, sizeof(T));
+    std::memcpy(&wbx, fb + 3 * L, sizeof(T)), std::memcpy(&wby, fb + 4 * L, sizeof(T)), std::memcpy(&wbz, fb + 5 * L, sizeof(T));
+    const T rr = std::abs(scaled) * ((rx * (wbx - wax) + ry * (wby - way)) + rz * (wbz - waz));
+    std::memcpy(rate + L * i, &rr, sizeof(T));
   }
-  atan2_many(y, x, theta, count);
+  // Every fold through glibc's vector atan2 (four at a time), whatever the block
+  // and the lanes: the padding (0, 1) is a zero angle, discarded.
+  const std::size_t n = L * count, padded = (n + 3) / 4 * 4;
+  std::fill(y + n, y + padded, 0.0);
+  std::fill(x + n, x + padded, 1.0);
+  atan2_many(y, x, theta, padded);
 }
 
 namespace {
-// Four arrays of it: 8 KiB, in the first cache level. A multiple of 4: atan2_many
-// takes four at a time and the rest one by one (the two round differently), so
-// every fold gets the same one in angles() and energy(), whatever the block.
+// Four arrays of it and the lanes: 8 KiB a lane, in the first cache levels. A multiple of 4.
 constexpr std::size_t block_size = 256;
 static_assert(block_size % 4 == 0);
 }  // namespace
 
 PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate,
                                           std::vector<double>& frames) const {
-  panel_frames(p, v, frames);
-  double y[block_size], x[block_size];
+  frames.resize(6 * panel_a_.size());
+  panel_frames<1>(p.data()->data(), v ? v->data()->data() : nullptr, frames.data());
+  double y[block_size], x[block_size], out[block_size];
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
-    block(h0, std::min(block_size, size() - h0), p, v, frames.data(), theta + h0, v ? rate + h0 : nullptr, y, x);
+    const std::size_t count = std::min(block_size, size() - h0);
+    block<1>(h0, count, p.data()->data(), v, frames.data(), out, v ? rate + h0 : nullptr, y, x);
+    std::copy(out, out + count, theta + h0);
+  }
+}
+
+template <std::size_t L>
+[[gnu::always_inline]] inline void FoldKernel::energy(const double* p, const double* v, const double* reference,
+                                                      const double* rest, const double* weight, double* const* angles,
+                                                      std::int8_t* const* turns, Sums* sums, double* frames) const {
+  panel_frames<L>(p, v, frames);
+  const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
+  const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
+  double y[L * block_size], x[L * block_size], theta[L * block_size], rate[L * block_size];
+  // Four partial sums of each, a lane (no chain of additions each waiting for the
+  // one before): summed at the end.
+  constexpr std::size_t partial = 4;
+  double energy_sum[L][partial] = {}, rate_sum[L][partial] = {}, largest[L][partial] = {};
+  for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
+    const std::size_t count = std::min(block_size, size() - h0);
+    block<L>(h0, count, p, v != nullptr, frames, theta, rate, y, x);
+    if (!v) std::fill(rate, rate + L * count, 0.0);
+    // Lane by lane: lane l's angles continuous from lane l - 1's (lane 0's from `reference`).
+    for (std::size_t l = 0; l < L; ++l) {
+      const double* near = l == 0 ? reference : angles[l - 1];
+      double* out = angles[l];
+      std::int8_t* whole_turns = turns[l];
+      const std::size_t whole_partials = count / partial * partial;
+      for (std::size_t i = 0; i < count; i += partial) {
+        const std::size_t width = i < whole_partials ? partial : count - i;
+        for (std::size_t s = 0; s < width; ++s) {
+          const std::size_t h = h0 + i + s;
+          const double raw = theta[L * (i + s) + l];
+          double whole;
+          if (near) {
+            whole = ((near[h] - raw) * per_turn + shifter) - shifter;
+            whole_turns[h] = static_cast<std::int8_t>(whole);
+          } else {
+            whole = whole_turns[h];
+          }
+          const double continuous = raw + turn * whole;
+          if (near) largest[l][s] = std::max(largest[l][s], std::abs(continuous - near[h]));
+          out[h] = continuous;
+          const double d = continuous - rest[h], wd = weight[h] * d;
+          energy_sum[l][s] += wd * d;
+          rate_sum[l][s] += wd * rate[L * (i + s) + l];
+        }
+      }
+    }
+  }
+  for (std::size_t l = 0; l < L; ++l) {
+    sums[l].energy = 0.5 * ((energy_sum[l][0] + energy_sum[l][1]) + (energy_sum[l][2] + energy_sum[l][3]));
+    sums[l].rate = (rate_sum[l][0] + rate_sum[l][1]) + (rate_sum[l][2] + rate_sum[l][3]);
+    sums[l].largest = std::max(std::max(largest[l][0], largest[l][1]), std::max(largest[l][2], largest[l][3]));
   }
 }
 
 PHEDRA_CPU_CLONES FoldKernel::Sums FoldKernel::energy(const Points& p, const Points* v, const double* reference,
                                                       const double* rest, const double* weight, double* angles,
                                                       std::int8_t* turns, std::vector<double>& frames) const {
-  panel_frames(p, v, frames);
-  const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
-  const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
-  double y[block_size], x[block_size], theta[block_size], rate[block_size];
-  // Four partial sums of each (no chain of additions each waiting for the one
-  // before): summed at the end.
-  constexpr std::size_t lanes = 4;
-  double energy_sum[lanes] = {}, rate_sum[lanes] = {}, largest[lanes] = {};
-  for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
-    const std::size_t count = std::min(block_size, size() - h0);
-    block(h0, count, p, v, frames.data(), theta, rate, y, x);
-    if (!v) std::fill(rate, rate + count, 0.0);
-    const std::size_t whole_lanes = count / lanes * lanes;
-    for (std::size_t i = 0; i < count; i += lanes) {
-      const std::size_t width = i < whole_lanes ? lanes : count - i;
-      for (std::size_t l = 0; l < width; ++l) {
-        const std::size_t h = h0 + i + l;
-        const double raw = theta[i + l];
-        double whole;
-        if (reference) {
-          whole = ((reference[h] - raw) * per_turn + shifter) - shifter;
-          turns[h] = static_cast<std::int8_t>(whole);
-        } else {
-          whole = turns[h];
-        }
-        const double continuous = raw + turn * whole;
-        if (reference) largest[l] = std::max(largest[l], std::abs(continuous - reference[h]));
-        angles[h] = continuous;
-        const double d = continuous - rest[h], wd = weight[h] * d;
-        energy_sum[l] += wd * d;
-        rate_sum[l] += wd * rate[i + l];
-      }
-    }
-  }
+  frames.resize(6 * panel_a_.size());
   Sums out;
-  out.energy = 0.5 * ((energy_sum[0] + energy_sum[1]) + (energy_sum[2] + energy_sum[3]));
-  out.rate = (rate_sum[0] + rate_sum[1]) + (rate_sum[2] + rate_sum[3]);
-  out.largest = std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3]));
+  energy<1>(p.data()->data(), v ? v->data()->data() : nullptr, reference, rest, weight, &angles, &turns, &out,
+            frames.data());
   return out;
+}
+
+PHEDRA_CPU_CLONES void FoldKernel::energy_lanes(const double* p, const double* v, const double* reference,
+                                                const double* rest, const double* weight, double* const* angles,
+                                                std::int8_t* const* turns, Sums* sums,
+                                                std::vector<double>& frames) const {
+  frames.resize(6 * lanes * panel_a_.size());
+  energy<lanes>(p, v, reference, rest, weight, angles, turns, sums, frames.data());
 }
 
 }  // namespace phedra

@@ -17,9 +17,10 @@
 //
 // The energy's pass (energy()) runs over the folds in blocks of 256: a block's
 // angles, their atan2, the continuity and the energy's sums while the block is
-// in the first cache level, and no whole-array scratch (measured: no faster
-// than separate passes, the kernel being bound by its arithmetic and scalar
-// loads, about 13 cycles a fold; docs/performance.md).
+// in the first cache level, and no whole-array scratch. One sample's kernel is
+// bound by its arithmetic and scalar loads (about 13 cycles a fold), so the
+// landscape runs four samples at once (energy_lanes): their numbers side by
+// side, one AVX2 instruction doing a step of all four (docs/performance.md).
 
 #include "phedra/bar_hinge_model.h"
 
@@ -50,12 +51,30 @@ class FoldKernel {
   Sums energy(const Points& corners, const Points* rates, const double* reference, const double* rest,
               const double* weight, double* angles, std::int8_t* turns, std::vector<double>& frames) const;
 
+  /// Samples evaluated together (SIMD across samples, no gathers: each number a
+  /// kernel loads is the lanes' four in a row).
+  static constexpr std::size_t lanes = 4;
+  /// energy() of `lanes` samples at once, each lane the same bits as energy() of
+  /// it alone: the corner nodes' positions `p` and rates `v` interleaved,
+  /// [node][coordinate][lane]; lane l's angles continuous from lane l - 1's
+  /// (lane 0's from `reference`, not null) into angles[l], turns[l], sums[l].
+  void energy_lanes(const double* p, const double* v, const double* reference, const double* rest,
+                    const double* weight, double* const* angles, std::int8_t* const* turns, Sums* sums,
+                    std::vector<double>& frames) const;
+
  private:
-  /// The panels' unit normals and turns into `frames` (6 numbers a panel).
-  void panel_frames(const Points& p, const Points* v, std::vector<double>& frames) const;
-  /// Folds h0 .. h0 + count - 1: theta, and (v not null) the rates (`rate` may be null without).
-  void block(std::size_t h0, std::size_t count, const Points& p, const Points* v, const double* frames, double* theta,
+  /// The panels' unit normals and turns into `frames` (6 numbers a panel, each a
+  /// lane: [panel][number][lane]) from the nodes' positions `p` and rates `v`
+  /// (null: none), [node][coordinate][lane].
+  template <std::size_t L>
+  void panel_frames(const double* p, const double* v, double* frames) const;
+  /// Folds h0 .. h0 + count - 1 of L samples: theta (y, x: scratch), and with rates the rates; [fold][lane].
+  template <std::size_t L>
+  void block(std::size_t h0, std::size_t count, const double* p, bool rates, const double* frames, double* theta,
              double* rate, double* y, double* x) const;
+  template <std::size_t L>
+  void energy(const double* p, const double* v, const double* reference, const double* rest, const double* weight,
+              double* const* angles, std::int8_t* const* turns, Sums* sums, double* frames) const;
 
   /// Each panel's normal is (P[c] - P[a]) x (P[d] - P[b]).
   std::vector<std::uint32_t> panel_a_, panel_b_, panel_c_, panel_d_;

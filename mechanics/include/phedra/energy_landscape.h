@@ -91,6 +91,11 @@ class FoldEnergy {
     std::vector<double> frames;  ///< the panels' normals and turns (the fold kernel's)
     /// Each fold's continuous angle is its angle in (-pi, pi] + 2 pi turns.
     std::vector<std::int8_t> turns;
+    /// Samples evaluated together (load_lane, evaluate_lanes): the corner nodes'
+    /// positions and rates side by side, [node][coordinate][lane], the kernel's
+    /// frames, each lane's turns.
+    std::vector<double> lane_x, lane_v, lane_frames;
+    std::array<std::vector<std::int8_t>, 4> lane_turns;
   };
   struct Value {
     double energy = 0.0;
@@ -107,6 +112,20 @@ class FoldEnergy {
   /// scratch.turns at t): the angles that evaluation gave, bit for bit.
   Value evaluate_turned(double t, const std::vector<std::int8_t>& turns, std::vector<double>& angles,
                         Scratch& scratch) const;
+
+  /// Samples evaluated together: four (SIMD across samples: the fold kernel's
+  /// numbers of the four side by side, no gathers).
+  static constexpr std::size_t lanes = 4;
+  /// nodes_at(t), its nodes also copied into lane `lane` (< lanes) of the samples
+  /// evaluated together. False at a flexion limit (no rates: such a sample is
+  /// evaluated alone).
+  bool load_lane(double t, std::size_t lane, Scratch& scratch) const;
+  /// E, dE/dt and the continuous angles of the `lanes` samples loaded (all with
+  /// rates), lane l's angles carried from lane l - 1's and lane 0's from `near`
+  /// (not empty), its turns into scratch.lane_turns[l]: each lane what evaluate()
+  /// gives of its t from those angles, bit for bit.
+  std::array<Value, lanes> evaluate_lanes(const std::vector<double>& near,
+                                          std::array<std::vector<double>, lanes>& angles, Scratch& scratch) const;
 
   /// The same with a scratch of its own (tests).
   double energy(double t, std::vector<double>& angles, const std::vector<double>& near = {}) const;
