@@ -293,10 +293,12 @@ TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and i
 }
 
 TEST_CASE("the energy's samples evaluated four together equal each evaluated alone, bit for bit", "[mechanics]") {
-  // FoldEnergy::evaluate_lanes (the landscape's walk, SIMD across samples) against
+  // FoldEnergy::load_lanes and evaluate_lanes (the landscape's walk, SIMD across
+  // samples: the members' recursions, the nodes' writes, the fold kernel) against
   // evaluate() of each lane from the lane before it: E, dE/dt, the largest turn,
-  // every angle and turn; on every shipped preset, both panel models, steps small
-  // and large (folds turning past half a turn between lanes).
+  // every angle, turn, node position and rate; on every shipped preset (open
+  // P-hedra, tubes, arrays with boundary columns and T-junctions), both panel
+  // models, steps small and large (folds turning past half a turn between lanes).
   std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
   for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
     if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") files.push_back(entry.path());
@@ -315,7 +317,7 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
         std::array<double, FoldEnergy::lanes> ts;
         for (std::size_t l = 0; l < ts.size(); ++l) ts[l] = design.assembly.t_at_fraction(0.1 + step * static_cast<double>(l));
         FoldEnergy::Scratch together, alone;
-        for (std::size_t l = 0; l < ts.size(); ++l) REQUIRE(fold.load_lane(ts[l], l, together));
+        REQUIRE(fold.load_lanes(ts.data(), together));
         std::vector<double> near;
         fold.evaluate(design.assembly.t_at_fraction(0.08), {}, near, alone);
         std::array<std::vector<double>, FoldEnergy::lanes> angles;
@@ -331,6 +333,10 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
           CHECK(angles[l] == single);
           CHECK(together.lane_turns[l] == alone.turns);
           near = single;
+          // The nodes (the strain's) as nodes_at leaves them.
+          fold.lane_nodes(l, together);
+          CHECK(together.x == alone.x);
+          CHECK(together.v == alone.v);
           ++lanes_checked;
         }
       }

@@ -169,7 +169,7 @@ void Assembly::write_vertices(const std::vector<NetState>& states, std::span<con
       const double apex = p.boundary == 1 ? state.apexes.front() : state.apexes.back();
       g = g + (Vec3(0, 0, apex) - state.axial[p.entry]);
     }
-    out[k] = origin + to_user * g;
+    out[k] = NetWriter::user_point(to_user, origin, g);
   }
 }
 

@@ -11,9 +11,6 @@
 namespace phedra {
 namespace {
 
-std::size_t first_apex(const Seed& seed) { return seed.swapped ? seed.vertex_line + 1 : seed.vertex_line; }
-std::size_t second_apex(const Seed& seed) { return seed.swapped ? seed.vertex_line : seed.vertex_line + 1; }
-
 void check_heights(const std::vector<double>& z, double scale, const std::string& field) {
   const double eps = tolerance::scaled(tolerance::coincident, scale);
   for (std::size_t j = 0; j + 1 < z.size(); ++j) {
@@ -48,7 +45,7 @@ SeededMember::SeededMember(const MemberSpec& spec, const NetState& parent, std::
     input.trajectory.push_back(parent.axial[i * parent_columns + seed_.vertex_line]);
     general_trajectory.push_back(parent.general[i * parent_columns + seed_.vertex_line]);
   }
-  heights_ = {parent.apexes[first_apex(seed_)], parent.apexes[second_apex(seed_)]};
+  heights_ = {parent.apexes[seed_.first_apex()], parent.apexes[seed_.second_apex()]};
   for (double h : spec.further_heights) heights_.push_back(frame.height_to_canonical(h));
   if (closed_) {
     heights_.push_back(heights_[0]);
@@ -88,7 +85,7 @@ void SeededMember::evaluate(const NetState& parent, std::size_t parent_columns, 
   out.axial.resize(rows * n);
   out.general.resize(rows * n);
   out.apexes.resize(n + 1);
-  motion_.complete_first_row(parent.apexes[first_apex(seed_)], parent.apexes[second_apex(seed_)], parent.axial[k],
+  motion_.complete_first_row(parent.apexes[seed_.first_apex()], parent.apexes[seed_.second_apex()], parent.axial[k],
                              out.apexes.data(), out.axial.data());
   std::copy(out.axial.begin(), out.axial.begin() + n, out.general.begin());
   for (std::size_t i = 1; i < rows; ++i) {

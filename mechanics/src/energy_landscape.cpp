@@ -42,19 +42,28 @@ void FoldEnergy::nodes_at(double t, Scratch& s) const {
   if (s.finite) design_.assembly.write_vertices(s.rates, places_, s.v, NetWriter::Kind::rates);
 }
 
-bool FoldEnergy::load_lane(double t, std::size_t lane, Scratch& s) const {
-  nodes_at(t, s);
-  const std::size_t n = s.x.size();
-  s.lane_x.resize(3 * lanes * n);
-  s.lane_v.resize(3 * lanes * n);
-  double* x = s.lane_x.data() + lane;
-  double* v = s.lane_v.data() + lane;
+bool FoldEnergy::load_lanes(const double* ts, Scratch& s) const {
+  static_assert(lanes == Assembly::lanes);
+  const Assembly& a = design_.assembly;
+  if (!a.evaluate_canonical_rate_lanes(ts, s.state_lanes, s.rate_lanes, false, s.base_state, s.base_rate)) return false;
+  s.lane_x.resize(3 * lanes * places_.size());
+  s.lane_v.resize(3 * lanes * places_.size());
+  a.write_vertices_lanes(s.state_lanes, places_, s.lane_x.data());
+  a.write_vertices_lanes(s.rate_lanes, places_, s.lane_v.data(), NetWriter::Kind::rates);
+  return true;
+}
+
+void FoldEnergy::lane_nodes(std::size_t lane, Scratch& s) const {
+  const std::size_t n = places_.size();
+  s.x.resize(n);
+  s.v.resize(n);
+  s.finite = true;
+  const double* x = s.lane_x.data() + lane;
+  const double* v = s.lane_v.data() + lane;
   for (std::size_t i = 0; i < n; ++i, x += 3 * lanes, v += 3 * lanes) {
-    for (int c = 0; c < 3; ++c) x[c * lanes] = s.x[i][c];
-    if (!s.finite) continue;
-    for (int c = 0; c < 3; ++c) v[c * lanes] = s.v[i][c];
+    s.x[i] = Vec3(x[0], x[lanes], x[2 * lanes]);
+    s.v[i] = Vec3(v[0], v[lanes], v[2 * lanes]);
   }
-  return s.finite;
 }
 
 std::array<FoldEnergy::Value, FoldEnergy::lanes> FoldEnergy::evaluate_lanes(
@@ -268,22 +277,20 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     std::array<std::vector<double>, lanes> lane_angles;
     std::array<HomogenizedStrain::State, lanes> states;
     for (std::size_t k = first; k <= last;) {
-      std::size_t loaded = 0;
-      if (last - k + 1 >= lanes && !from.angles.empty()) {
-        while (loaded < lanes && fold.load_lane(ts[index(k + loaded)], loaded, scratch)) {
-          states[loaded] = strain_of(scratch);
-          ++loaded;
+      std::array<double, lanes> lane_ts;
+      for (std::size_t l = 0; l < lanes && k + l <= last; ++l) lane_ts[l] = ts[index(k + l)];
+      if (last - k + 1 >= lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
+        for (std::size_t l = 0; l < lanes; ++l) {
+          fold.lane_nodes(l, scratch);
+          states[l] = strain_of(scratch);
         }
-      }
-      if (loaded == lanes) {
         const std::array<FoldEnergy::Value, lanes> values = fold.evaluate_lanes(from.angles, lane_angles, scratch);
         std::size_t l = 0;
         for (; l < lanes && values[l].largest_turn <= 0.5; ++l) {
-          record_state(index(k + l), ts[index(k + l)], values[l].energy, values[l].rate, scratch.lane_turns[l],
-                       states[l]);
+          record_state(index(k + l), lane_ts[l], values[l].energy, values[l].rate, scratch.lane_turns[l], states[l]);
         }
         if (l > 0) {
-          from.t = ts[index(k + l - 1)];
+          from.t = lane_ts[l - 1];
           from.energy = values[l - 1].energy;
           from.rate = values[l - 1].rate;
           std::swap(from.angles, lane_angles[l - 1]);

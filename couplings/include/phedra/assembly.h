@@ -101,6 +101,18 @@ class Assembly {
   void write_vertices(const std::vector<NetState>& states, std::span<const NetPlace> places, Points& out,
                       NetWriter::Kind kind = NetWriter::Kind::positions) const;
 
+  /// Samples evaluated together (SIMD across samples; assembly_lanes.cpp).
+  static constexpr std::size_t lanes = NetLanes::lanes;
+  /// evaluate_canonical_rate of `lanes` samples ts[0..lanes) at once, side by side
+  /// (the base's nets one sample at a time into `base_state` and `base_rate`, then
+  /// the members' recursions of all lanes together): each lane the same bits as
+  /// that sample alone. False when one of them is at a flexion limit (no rates).
+  bool evaluate_canonical_rate_lanes(const double* ts, std::vector<NetLanes>& states, std::vector<NetLanes>& rates,
+                                     bool closure, NetState& base_state, NetState& base_rate) const;
+  /// write_vertices of lanes: out[(k * 3 + coordinate) * lanes + lane] for place k.
+  void write_vertices_lanes(const std::vector<NetLanes>& states, std::span<const NetPlace> places, double* out,
+                            NetWriter::Kind kind = NetWriter::Kind::positions) const;
+
   /// Groups of vertices of different members that coincide at t* (within 1e-9 of
   /// the model size): the vertices the couplings share. They must stay together.
   const std::vector<std::vector<VertexRef>>& shared_vertices() const;

@@ -16,11 +16,22 @@
 
 namespace phedra {
 
+/// The canonical nets of samples evaluated together (SIMD across samples): each
+/// number of a NetState the lanes' side by side, [entry][coordinate][lane], and
+/// the apexes [j][lane]. Each lane holds what the NetState of its sample holds, bit for bit.
+struct NetLanes {
+  static constexpr std::size_t lanes = 4;
+  std::vector<double> axial, general, apexes;
+};
+
 /// Where a member is attached.
 struct Seed {
   std::size_t parent = 0;       ///< index of the parent member
   std::size_t vertex_line = 0;  ///< k: the parent's profile vertex V_{i,k} the member starts at
   bool swapped = false;         ///< first two apexes (S_{k+1}, S_k) instead of (S_k, S_{k+1})
+  /// The parent's apexes that are the member's first two.
+  std::size_t first_apex() const { return swapped ? vertex_line + 1 : vertex_line; }
+  std::size_t second_apex() const { return swapped ? vertex_line : vertex_line + 1; }
 };
 
 /// A member's own choices: apexes after the first two, and its signs.
@@ -55,6 +66,8 @@ class SeededMember {
   /// closed member's last column (its first again, where the closure is measured)
   /// is not computed: its rows past the first keep whatever they held.
   void evaluate(const NetState& parent, std::size_t parent_columns, NetState& out, bool closure = true) const;
+  /// evaluate() of NetLanes::lanes samples at once (assembly_lanes.cpp).
+  void evaluate_lanes(const NetLanes& parent, std::size_t parent_columns, NetLanes& out, bool closure) const;
 
  private:
   Seed seed_;

@@ -55,6 +55,8 @@ class NetMotion {
     for (std::size_t j = 0; j + 1 < columns_; ++j) b[j + 1] = rho[j] * b[j] + (1.0 - rho[j]) * s[j + 1];
   }
   const double* row_scales(std::size_t i) const { return &scales_[i * columns_]; }
+  /// +1 for a '+' sign, -1 for '-' (M+/M- on z): n - 1 entries (complete_first_row).
+  const double* mirrors() const { return mirror_.data(); }
 
   /// The L_0 recursion: apexes s[0..n] and row 0 of the axial net at t, from
   /// s[0], s[1] and the row's first vertex (in the plane pi_0). Linear in its

@@ -33,6 +33,16 @@ class NetWriter {
     if (c == n + 1) return general[n - 1] + (Vec3(0, 0, s[n]) - axial[n - 1]);
     return general[c - 1];
   }
+  /// A canonical point (or rate: `origin` zero) in the user's frame: origin +
+  /// to_user p, each coordinate's sum left to right. Spelled out, not Eigen's
+  /// product, whose order differs between its vectorized and its scalar paths
+  /// (the z coordinate is summed right to left with SSE2): the samples evaluated
+  /// together (couplings/src/assembly_lanes.cpp) round exactly as this.
+  static Vec3 user_point(const Mat3& to_user, const Vec3& origin, const Vec3& p) {
+    Vec3 out;
+    for (int c = 0; c < 3; ++c) out[c] = origin[c] + ((to_user(c, 0) * p[0] + to_user(c, 1) * p[1]) + to_user(c, 2) * p[2]);
+    return out;
+  }
   /// Row i from the apexes s[0..n], the axial row and the general row (n entries each).
   void write(std::size_t i, const double* s, const Vec3* axial, const Vec3* general) const {
     if (closed_) {
@@ -47,7 +57,7 @@ class NetWriter {
   }
 
  private:
-  Vec3 user(const Vec3& p) const { return origin_ + to_user_ * p; }
+  Vec3 user(const Vec3& p) const { return user_point(to_user_, origin_, p); }
   Mat3 to_user_;
   Vec3 origin_;
   bool closed_;

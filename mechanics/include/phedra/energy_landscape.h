@@ -91,9 +91,12 @@ class FoldEnergy {
     std::vector<double> frames;  ///< the panels' normals and turns (the fold kernel's)
     /// Each fold's continuous angle is its angle in (-pi, pi] + 2 pi turns.
     std::vector<std::int8_t> turns;
-    /// Samples evaluated together (load_lane, evaluate_lanes): the corner nodes'
+    /// Samples evaluated together (load_lanes, evaluate_lanes): the members' nets
+    /// and their rates (the base's one sample at a time), the corner nodes'
     /// positions and rates side by side, [node][coordinate][lane], the kernel's
     /// frames, each lane's turns.
+    std::vector<NetLanes> state_lanes, rate_lanes;
+    NetState base_state, base_rate;
     std::vector<double> lane_x, lane_v, lane_frames;
     std::array<std::vector<std::int8_t>, 4> lane_turns;
   };
@@ -116,10 +119,13 @@ class FoldEnergy {
   /// Samples evaluated together: four (SIMD across samples: the fold kernel's
   /// numbers of the four side by side, no gathers).
   static constexpr std::size_t lanes = 4;
-  /// nodes_at(t), its nodes also copied into lane `lane` (< lanes) of the samples
-  /// evaluated together. False at a flexion limit (no rates: such a sample is
-  /// evaluated alone).
-  bool load_lane(double t, std::size_t lane, Scratch& scratch) const;
+  /// The corner nodes' positions and rates of the `lanes` samples ts[0..lanes)
+  /// side by side (Assembly::evaluate_canonical_rate_lanes): each lane what
+  /// nodes_at gives, bit for bit. False when one is at a flexion limit (no
+  /// rates: such a sample is evaluated alone).
+  bool load_lanes(const double* ts, Scratch& scratch) const;
+  /// Lane `lane`'s nodes (load_lanes) into scratch.x and scratch.v, as nodes_at leaves them.
+  void lane_nodes(std::size_t lane, Scratch& scratch) const;
   /// E, dE/dt and the continuous angles of the `lanes` samples loaded (all with
   /// rates), lane l's angles carried from lane l - 1's and lane 0's from `near`
   /// (not empty), its turns into scratch.lane_turns[l]: each lane what evaluate()
