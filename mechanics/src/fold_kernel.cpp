@@ -63,6 +63,16 @@ template <std::size_t L>
 using Lane = std::conditional_t<L == 1, double, Four>;
 static_assert(FoldKernel::lanes == 4);
 
+/// Lane l of `v` to out[l * stride].
+template <std::size_t L>
+[[gnu::always_inline]] inline void scatter(const Lane<L>& v, double* out, std::size_t stride) {
+  if constexpr (L == 1) {
+    *out = v;
+  } else {
+    for (std::size_t l = 0; l < L; ++l) out[l * stride] = v[l];
+  }
+}
+
 }  // namespace
 
 // Inlined into the callers, so that it is compiled in each of their clones (x86-64-v3 and the baseline).
@@ -109,7 +119,7 @@ template <std::size_t L>
 template <std::size_t L>
 [[gnu::always_inline]] inline void FoldKernel::block(std::size_t h0, std::size_t count, const double* p, bool rates,
                                                      const double* frames, double* theta, double* rate, double* y,
-                                                     double* x) const {
+                                                     double* x, std::size_t stride) const {
   using T = Lane<L>;
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t h = h0 + i;
@@ -128,21 +138,23 @@ template <std::size_t L>
     const T cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
     const T yy = scaled * ((rx * cx + ry * cy) + rz * cz);
     const T xx = std::copysign(1.0, scaled) * ((ax * bx + ay * by) + az * bz);
-    std::memcpy(y + L * i, &yy, sizeof(T)), std::memcpy(x + L * i, &xx, sizeof(T));
+    scatter<L>(yy, y + i, stride), scatter<L>(xx, x + i, stride);
     if (!rates) continue;
     // d theta / dt: the panels' relative turning rate about the hinge (e runs j to k).
     T wax, way, waz, wbx, wby, wbz;
     std::memcpy(&wax, fa + 3 * L, sizeof(T)), std::memcpy(&way, fa + 4 * L, sizeof(T)), std::memcpy(&waz, fa + 5 * L, sizeof(T));
     std::memcpy(&wbx, fb + 3 * L, sizeof(T)), std::memcpy(&wby, fb + 4 * L, sizeof(T)), std::memcpy(&wbz, fb + 5 * L, sizeof(T));
     const T rr = std::abs(scaled) * ((rx * (wbx - wax) + ry * (wby - way)) + rz * (wbz - waz));
-    std::memcpy(rate + L * i, &rr, sizeof(T));
+    scatter<L>(rr, rate + i, stride);
   }
   // Every fold through glibc's vector atan2 (four at a time), whatever the block
   // and the lanes: the padding (0, 1) is a zero angle, discarded.
-  const std::size_t n = L * count, padded = (n + 3) / 4 * 4;
-  std::fill(y + n, y + padded, 0.0);
-  std::fill(x + n, x + padded, 1.0);
-  atan2_many(y, x, theta, padded);
+  const std::size_t padded = (count + 3) / 4 * 4;
+  for (std::size_t l = 0; l < L; ++l) {
+    std::fill(y + l * stride + count, y + l * stride + padded, 0.0);
+    std::fill(x + l * stride + count, x + l * stride + padded, 1.0);
+    atan2_many(y + l * stride, x + l * stride, theta + l * stride, padded);
+  }
 }
 
 namespace {
@@ -158,7 +170,7 @@ PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, doub
   double y[block_size], x[block_size], out[block_size];
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
     const std::size_t count = std::min(block_size, size() - h0);
-    block<1>(h0, count, p.data()->data(), v, frames.data(), out, v ? rate + h0 : nullptr, y, x);
+    block<1>(h0, count, p.data()->data(), v, frames.data(), out, v ? rate + h0 : nullptr, y, x, block_size);
     std::copy(out, out + count, theta + h0);
   }
 }
@@ -172,38 +184,67 @@ template <std::size_t L>
   const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
   double y[L * block_size], x[L * block_size], theta[L * block_size], rate[L * block_size];
   // Four partial sums of each, a lane (no chain of additions each waiting for the
-  // one before): summed at the end.
+  // one before): fold h of a block in partial h % 4, four folds at once; summed at the end.
   constexpr std::size_t partial = 4;
-  double energy_sum[L][partial] = {}, rate_sum[L][partial] = {}, largest[L][partial] = {};
+  Four energy_sum[L] = {}, rate_sum[L] = {}, largest[L] = {};
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
     const std::size_t count = std::min(block_size, size() - h0);
-    block<L>(h0, count, p, v != nullptr, frames, theta, rate, y, x);
-    if (!v) std::fill(rate, rate + L * count, 0.0);
+    block<L>(h0, count, p, v != nullptr, frames, theta, rate, y, x, block_size);
+    if (!v) std::fill(rate, rate + L * block_size, 0.0);
     // Lane by lane: lane l's angles continuous from lane l - 1's (lane 0's from `reference`).
     for (std::size_t l = 0; l < L; ++l) {
       const double* near = l == 0 ? reference : angles[l - 1];
       double* out = angles[l];
       std::int8_t* whole_turns = turns[l];
+      const double* raws = theta + l * block_size;
+      const double* rates = rate + l * block_size;
       const std::size_t whole_partials = count / partial * partial;
-      for (std::size_t i = 0; i < count; i += partial) {
-        const std::size_t width = i < whole_partials ? partial : count - i;
-        for (std::size_t s = 0; s < width; ++s) {
-          const std::size_t h = h0 + i + s;
-          const double raw = theta[L * (i + s) + l];
-          double whole;
-          if (near) {
-            whole = ((near[h] - raw) * per_turn + shifter) - shifter;
-            whole_turns[h] = static_cast<std::int8_t>(whole);
-          } else {
-            whole = whole_turns[h];
-          }
-          const double continuous = raw + turn * whole;
-          if (near) largest[l][s] = std::max(largest[l][s], std::abs(continuous - near[h]));
-          out[h] = continuous;
-          const double d = continuous - rest[h], wd = weight[h] * d;
-          energy_sum[l][s] += wd * d;
-          rate_sum[l][s] += wd * rate[L * (i + s) + l];
+      for (std::size_t i = 0; i < whole_partials; i += partial) {
+        const std::size_t h = h0 + i;
+        Four raw, w, r, d;
+        std::memcpy(&raw, raws + i, sizeof raw);
+        Four whole;
+        if (near) {
+          Four n;
+          std::memcpy(&n, near + h, sizeof n);
+          whole = ((n - raw) * per_turn + shifter) - shifter;
+          for (std::size_t s = 0; s < partial; ++s) whole_turns[h + s] = static_cast<std::int8_t>(whole[s]);
+          const Four continuous = raw + turn * whole;
+          Four off = continuous - n;
+          off = off < 0.0 ? -off : off;
+          largest[l] = largest[l] < off ? off : largest[l];
+          std::memcpy(out + h, &continuous, sizeof continuous);
+          std::memcpy(&d, rest + h, sizeof d);
+          d = continuous - d;
+        } else {
+          for (std::size_t s = 0; s < partial; ++s) whole[s] = whole_turns[h + s];
+          const Four continuous = raw + turn * whole;
+          std::memcpy(out + h, &continuous, sizeof continuous);
+          std::memcpy(&d, rest + h, sizeof d);
+          d = continuous - d;
         }
+        std::memcpy(&w, weight + h, sizeof w);
+        std::memcpy(&r, rates + i, sizeof r);
+        const Four wd = w * d;
+        energy_sum[l] += wd * d;
+        rate_sum[l] += wd * r;
+      }
+      for (std::size_t i = whole_partials; i < count; ++i) {  // the last block's last folds, one at a time
+        const std::size_t h = h0 + i, s = i % partial;
+        const double raw = raws[i];
+        double whole;
+        if (near) {
+          whole = ((near[h] - raw) * per_turn + shifter) - shifter;
+          whole_turns[h] = static_cast<std::int8_t>(whole);
+        } else {
+          whole = whole_turns[h];
+        }
+        const double continuous = raw + turn * whole;
+        if (near) largest[l][s] = std::max(largest[l][s], std::abs(continuous - near[h]));
+        out[h] = continuous;
+        const double d = continuous - rest[h], wd = weight[h] * d;
+        energy_sum[l][s] += wd * d;
+        rate_sum[l][s] += wd * rates[i];
       }
     }
   }
