@@ -23,7 +23,8 @@ namespace phedra {
 FoldEnergy::FoldEnergy(const Design& design, double rest_t, const StiffnessOptions& options)
     : design_(design), model_(design, design.assembly.evaluate(rest_t), options),
       kernel_(std::make_unique<FoldKernel>(model_)),
-      places_(design.assembly.net_places(model_.mesh().node_vertex)) {
+      places_(design.assembly.net_places(model_.mesh().node_vertex)),
+      places_by_row_(design.assembly.places_by_row(places_)) {
   rest_angles_.resize(model_.fold_count());
   weight_.resize(model_.fold_count());
   for (std::size_t h = 0; h < rest_angles_.size(); ++h) {
@@ -45,12 +46,9 @@ void FoldEnergy::nodes_at(double t, Scratch& s) const {
 bool FoldEnergy::load_lanes(const double* ts, Scratch& s) const {
   static_assert(lanes == Assembly::lanes);
   const Assembly& a = design_.assembly;
-  if (!a.evaluate_canonical_rate_lanes(ts, s.state_lanes, s.rate_lanes, false, s.base_state, s.base_rate)) return false;
   s.lane_x.resize(3 * lanes * places_.size());
   s.lane_v.resize(3 * lanes * places_.size());
-  a.write_vertices_lanes(s.state_lanes, places_, s.lane_x.data());
-  a.write_vertices_lanes(s.rate_lanes, places_, s.lane_v.data(), NetWriter::Kind::rates);
-  return true;
+  return a.vertices_lanes(ts, places_, places_by_row_, s.lane_x.data(), s.lane_v.data(), s.assembly_lanes);
 }
 
 void FoldEnergy::lane_nodes(std::size_t lane, Scratch& s) const {

@@ -103,15 +103,28 @@ class Assembly {
 
   /// Samples evaluated together (SIMD across samples; assembly_lanes.cpp).
   static constexpr std::size_t lanes = NetLanes::lanes;
-  /// evaluate_canonical_rate of `lanes` samples ts[0..lanes) at once, side by side
-  /// (the base's nets one sample at a time into `base_state` and `base_rate`, then
-  /// the members' recursions of all lanes together): each lane the same bits as
-  /// that sample alone. False when one of them is at a flexion limit (no rates).
-  bool evaluate_canonical_rate_lanes(const double* ts, std::vector<NetLanes>& states, std::vector<NetLanes>& rates,
-                                     bool closure, NetState& base_state, NetState& base_rate) const;
-  /// write_vertices of lanes: out[(k * 3 + coordinate) * lanes + lane] for place k.
-  void write_vertices_lanes(const std::vector<NetLanes>& states, std::span<const NetPlace> places, double* out,
-                            NetWriter::Kind kind = NetWriter::Kind::positions) const;
+  /// Scratch of vertices_lanes, kept between calls.
+  struct LaneScratch {
+    NetState base_state, base_rate;  ///< the base's nets, one sample at a time
+    NetLanes base, base_rates;       ///< the base's nets of the lanes
+    std::vector<double> rows, apexes;  ///< the members' last two rows and their apexes
+    std::vector<std::size_t> columns, offset;
+  };
+  /// Places grouped by their row: order[first[i] .. first[i + 1]) are row i's.
+  struct RowPlaces {
+    std::vector<std::uint32_t> order;
+    std::vector<std::size_t> first;
+  };
+  RowPlaces places_by_row(std::span<const NetPlace> places) const;
+  /// The vertices at `places` (grouped by places_by_row) of `lanes` samples ts[0..lanes) at once, positions
+  /// into `x` and rates into `v`, [place][coordinate][lane]: for each lane what
+  /// write_vertices writes from evaluate_canonical_rate (without closure) of its
+  /// sample, bit for bit. The base's nets one sample at a time, then the members'
+  /// recursions of all lanes together, row by row across the members (two rows
+  /// of each in the caches, not whole nets). False when a sample is at a flexion
+  /// limit (no rates).
+  bool vertices_lanes(const double* ts, std::span<const NetPlace> places, const RowPlaces& by_row, double* x,
+                      double* v, LaneScratch& scratch) const;
 
   /// Groups of vertices of different members that coincide at t* (within 1e-9 of
   /// the model size): the vertices the couplings share. They must stay together.

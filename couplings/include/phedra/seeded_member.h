@@ -66,8 +66,17 @@ class SeededMember {
   /// closed member's last column (its first again, where the closure is measured)
   /// is not computed: its rows past the first keep whatever they held.
   void evaluate(const NetState& parent, std::size_t parent_columns, NetState& out, bool closure = true) const;
-  /// evaluate() of NetLanes::lanes samples at once (assembly_lanes.cpp).
-  void evaluate_lanes(const NetLanes& parent, std::size_t parent_columns, NetLanes& out, bool closure) const;
+  /// evaluate() of NetLanes::lanes samples at once, a row at a time
+  /// (assembly_lanes.cpp; each number the lanes' side by side): row 0 of the
+  /// axial and general nets and the apexes from the parent's apexes and its
+  /// vertex on the seed's line in row 0,
+  void first_row_lanes(const double* parent_apexes, const double* parent_vertex, double* apexes, double* axial,
+                       double* general) const;
+  /// and row i >= 1 from the apexes, the parent's axial and general vertices on
+  /// the seed's line in row i and this member's row i - 1.
+  void row_lanes(std::size_t i, const double* apexes, const double* parent_axial, const double* parent_general,
+                 const double* previous_axial, const double* previous_general, double* axial, double* general,
+                 bool closure) const;
 
  private:
   Seed seed_;

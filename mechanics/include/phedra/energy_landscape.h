@@ -91,12 +91,10 @@ class FoldEnergy {
     std::vector<double> frames;  ///< the panels' normals and turns (the fold kernel's)
     /// Each fold's continuous angle is its angle in (-pi, pi] + 2 pi turns.
     std::vector<std::int8_t> turns;
-    /// Samples evaluated together (load_lanes, evaluate_lanes): the members' nets
-    /// and their rates (the base's one sample at a time), the corner nodes'
-    /// positions and rates side by side, [node][coordinate][lane], the kernel's
-    /// frames, each lane's turns.
-    std::vector<NetLanes> state_lanes, rate_lanes;
-    NetState base_state, base_rate;
+    /// Samples evaluated together (load_lanes, evaluate_lanes): the assembly's
+    /// scratch, the corner nodes' positions and rates side by side,
+    /// [node][coordinate][lane], the kernel's frames, each lane's turns.
+    Assembly::LaneScratch assembly_lanes;
     std::vector<double> lane_x, lane_v, lane_frames;
     std::array<std::vector<std::int8_t>, 4> lane_turns;
   };
@@ -120,7 +118,7 @@ class FoldEnergy {
   /// numbers of the four side by side, no gathers).
   static constexpr std::size_t lanes = 4;
   /// The corner nodes' positions and rates of the `lanes` samples ts[0..lanes)
-  /// side by side (Assembly::evaluate_canonical_rate_lanes): each lane what
+  /// side by side (Assembly::vertices_lanes): each lane what
   /// nodes_at gives, bit for bit. False when one is at a flexion limit (no
   /// rates: such a sample is evaluated alone).
   bool load_lanes(const double* ts, Scratch& scratch) const;
@@ -148,6 +146,7 @@ class FoldEnergy {
   std::unique_ptr<FoldKernel> kernel_;
   std::vector<double> rest_angles_, weight_;  ///< weight: k L of each fold
   std::vector<Assembly::NetPlace> places_;    ///< each node's member vertex in the canonical nets
+  Assembly::RowPlaces places_by_row_;         ///< the nodes by row (Assembly::vertices_lanes)
 };
 
 }  // namespace phedra
