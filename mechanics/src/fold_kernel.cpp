@@ -63,6 +63,25 @@ template <std::size_t L>
 using Lane = std::conditional_t<L == 1, double, Four>;
 static_assert(FoldKernel::lanes == 4);
 
+/// A point's (or vector's) three coordinates, each its L lanes.
+template <std::size_t L>
+struct Triple {
+  Lane<L> x, y, z;
+};
+/// The triple at p: [coordinate][lane].
+template <std::size_t L>
+[[gnu::always_inline]] inline void load(const double* p, Triple<L>& out) {
+  std::memcpy(&out.x, p, sizeof out.x);
+  std::memcpy(&out.y, p + L, sizeof out.y);
+  std::memcpy(&out.z, p + 2 * L, sizeof out.z);
+}
+template <std::size_t L>
+[[gnu::always_inline]] inline void store(const Triple<L>& v, double* p) {
+  std::memcpy(p, &v.x, sizeof v.x);
+  std::memcpy(p + L, &v.y, sizeof v.y);
+  std::memcpy(p + 2 * L, &v.z, sizeof v.z);
+}
+
 /// Lane l of `v` to out[l * stride].
 template <std::size_t L>
 [[gnu::always_inline]] inline void scatter(const Lane<L>& v, double* out, std::size_t stride) {
@@ -82,37 +101,28 @@ template <std::size_t L>
   using T = Lane<L>;
   const std::size_t panels = panel_a_.size();
   for (std::size_t q = 0; q < panels; ++q, f += 6 * L) {
-    const double* a = p + 3 * L * panel_a_[q];
-    const double* b = p + 3 * L * panel_b_[q];
-    const double* c = p + 3 * L * panel_c_[q];
-    const double* d = p + 3 * L * panel_d_[q];
-    T ax, ay, az, bx, by, bz, cx, cy, cz, dx, dy, dz;
-    std::memcpy(&ax, a, sizeof(T)), std::memcpy(&ay, a + L, sizeof(T)), std::memcpy(&az, a + 2 * L, sizeof(T));
-    std::memcpy(&bx, b, sizeof(T)), std::memcpy(&by, b + L, sizeof(T)), std::memcpy(&bz, b + 2 * L, sizeof(T));
-    std::memcpy(&cx, c, sizeof(T)), std::memcpy(&cy, c + L, sizeof(T)), std::memcpy(&cz, c + 2 * L, sizeof(T));
-    std::memcpy(&dx, d, sizeof(T)), std::memcpy(&dy, d + L, sizeof(T)), std::memcpy(&dz, d + 2 * L, sizeof(T));
-    const T d1x = cx - ax, d1y = cy - ay, d1z = cz - az, d2x = dx - bx, d2y = dy - by, d2z = dz - bz;
+    Triple<L> a, b, c, d;
+    load<L>(p + 3 * L * panel_a_[q], a), load<L>(p + 3 * L * panel_b_[q], b);
+    load<L>(p + 3 * L * panel_c_[q], c), load<L>(p + 3 * L * panel_d_[q], d);
+    const T d1x = c.x - a.x, d1y = c.y - a.y, d1z = c.z - a.z, d2x = d.x - b.x, d2y = d.y - b.y, d2z = d.z - b.z;
     const double inverse = inverse_normal_[q];  // 1 / |d1 x d2|: the panel is rigid
-    const T ux = inverse * (d1y * d2z - d1z * d2y), uy = inverse * (d1z * d2x - d1x * d2z),
-            uz = inverse * (d1x * d2y - d1y * d2x);
-    std::memcpy(f, &ux, sizeof(T)), std::memcpy(f + L, &uy, sizeof(T)), std::memcpy(f + 2 * L, &uz, sizeof(T));
+    const Triple<L> u{inverse * (d1y * d2z - d1z * d2y), inverse * (d1z * d2x - d1x * d2z),
+                      inverse * (d1x * d2y - d1y * d2x)};
+    store<L>(u, f);
     if (!v) continue;
     // The panel turns rigidly (the motion is isometric) with some w: its normal's
     // rate is w x unit, so unit x (that rate) is w less its part along the normal,
     // and that part is across every hinge of the panel (they lie in its plane):
     // it adds nothing to a fold's rate. unit x (rate of d1 x d2) / |d1 x d2| is the rest.
-    a = v + 3 * L * panel_a_[q], b = v + 3 * L * panel_b_[q], c = v + 3 * L * panel_c_[q], d = v + 3 * L * panel_d_[q];
-    std::memcpy(&ax, a, sizeof(T)), std::memcpy(&ay, a + L, sizeof(T)), std::memcpy(&az, a + 2 * L, sizeof(T));
-    std::memcpy(&bx, b, sizeof(T)), std::memcpy(&by, b + L, sizeof(T)), std::memcpy(&bz, b + 2 * L, sizeof(T));
-    std::memcpy(&cx, c, sizeof(T)), std::memcpy(&cy, c + L, sizeof(T)), std::memcpy(&cz, c + 2 * L, sizeof(T));
-    std::memcpy(&dx, d, sizeof(T)), std::memcpy(&dy, d + L, sizeof(T)), std::memcpy(&dz, d + 2 * L, sizeof(T));
-    const T e1x = cx - ax, e1y = cy - ay, e1z = cz - az, e2x = dx - bx, e2y = dy - by, e2z = dz - bz;
+    load<L>(v + 3 * L * panel_a_[q], a), load<L>(v + 3 * L * panel_b_[q], b);
+    load<L>(v + 3 * L * panel_c_[q], c), load<L>(v + 3 * L * panel_d_[q], d);
+    const T e1x = c.x - a.x, e1y = c.y - a.y, e1z = c.z - a.z, e2x = d.x - b.x, e2y = d.y - b.y, e2z = d.z - b.z;
     // dn = e1 x d2 + d1 x e2 (e: the diagonals' rates)
     const T nx = (e1y * d2z - e1z * d2y) + (d1y * e2z - d1z * e2y);
     const T ny = (e1z * d2x - e1x * d2z) + (d1z * e2x - d1x * e2z);
     const T nz = (e1x * d2y - e1y * d2x) + (d1x * e2y - d1y * e2x);
-    const T wx = inverse * (uy * nz - uz * ny), wy = inverse * (uz * nx - ux * nz), wz = inverse * (ux * ny - uy * nx);
-    std::memcpy(f + 3 * L, &wx, sizeof(T)), std::memcpy(f + 4 * L, &wy, sizeof(T)), std::memcpy(f + 5 * L, &wz, sizeof(T));
+    const Triple<L> w{inverse * (u.y * nz - u.z * ny), inverse * (u.z * nx - u.x * nz), inverse * (u.x * ny - u.y * nx)};
+    store<L>(w, f + 3 * L);
   }
 }
 
@@ -125,26 +135,20 @@ template <std::size_t L>
     const std::size_t h = h0 + i;
     const double* fa = frames + 6 * L * first_[h];
     const double* fb = frames + 6 * L * second_[h];
-    const double* pk = p + 3 * L * k_[h];
-    const double* pj = p + 3 * L * j_[h];
-    T ax, ay, az, bx, by, bz, kx, ky, kz, jx, jy, jz;
-    std::memcpy(&ax, fa, sizeof(T)), std::memcpy(&ay, fa + L, sizeof(T)), std::memcpy(&az, fa + 2 * L, sizeof(T));
-    std::memcpy(&bx, fb, sizeof(T)), std::memcpy(&by, fb + L, sizeof(T)), std::memcpy(&bz, fb + 2 * L, sizeof(T));
-    std::memcpy(&kx, pk, sizeof(T)), std::memcpy(&ky, pk + L, sizeof(T)), std::memcpy(&kz, pk + 2 * L, sizeof(T));
-    std::memcpy(&jx, pj, sizeof(T)), std::memcpy(&jy, pj + L, sizeof(T)), std::memcpy(&jz, pj + 2 * L, sizeof(T));
+    Triple<L> na, nb, pk, pj;
+    load<L>(fa, na), load<L>(fb, nb), load<L>(p + 3 * L * k_[h], pk), load<L>(p + 3 * L * j_[h], pj);
     // With n_B's sign s and e = r_kj / |r_kj|: y = e . (n_A x s n_B) = (s / |r_kj|) r_kj . (n_A x n_B).
     const double scaled = signed_inverse_length_[h];
-    const T rx = kx - jx, ry = ky - jy, rz = kz - jz;
-    const T cx = ay * bz - az * by, cy = az * bx - ax * bz, cz = ax * by - ay * bx;
+    const T rx = pk.x - pj.x, ry = pk.y - pj.y, rz = pk.z - pj.z;
+    const T cx = na.y * nb.z - na.z * nb.y, cy = na.z * nb.x - na.x * nb.z, cz = na.x * nb.y - na.y * nb.x;
     const T yy = scaled * ((rx * cx + ry * cy) + rz * cz);
-    const T xx = std::copysign(1.0, scaled) * ((ax * bx + ay * by) + az * bz);
+    const T xx = std::copysign(1.0, scaled) * ((na.x * nb.x + na.y * nb.y) + na.z * nb.z);
     scatter<L>(yy, y + i, stride), scatter<L>(xx, x + i, stride);
     if (!rates) continue;
     // d theta / dt: the panels' relative turning rate about the hinge (e runs j to k).
-    T wax, way, waz, wbx, wby, wbz;
-    std::memcpy(&wax, fa + 3 * L, sizeof(T)), std::memcpy(&way, fa + 4 * L, sizeof(T)), std::memcpy(&waz, fa + 5 * L, sizeof(T));
-    std::memcpy(&wbx, fb + 3 * L, sizeof(T)), std::memcpy(&wby, fb + 4 * L, sizeof(T)), std::memcpy(&wbz, fb + 5 * L, sizeof(T));
-    const T rr = std::abs(scaled) * ((rx * (wbx - wax) + ry * (wby - way)) + rz * (wbz - waz));
+    Triple<L> wa, wb;
+    load<L>(fa + 3 * L, wa), load<L>(fb + 3 * L, wb);
+    const T rr = std::abs(scaled) * ((rx * (wb.x - wa.x) + ry * (wb.y - wa.y)) + rz * (wb.z - wa.z));
     scatter<L>(rr, rate + i, stride);
   }
   // Every fold through glibc's vector atan2 (four at a time), whatever the block
