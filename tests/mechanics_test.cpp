@@ -563,6 +563,40 @@ TEST_CASE("the energy landscape on two threads (halves of the samples) equals on
   }
 }
 
+TEST_CASE("the energy landscape's coarse samples are its fine samples, bit for bit (four at a time, and alone where a fold turns fast)", "[mechanics]") {
+  // Samples 5, 9 and 17 are every 16th, 8th and 4th of 65, the rest state near
+  // either end: the coarse walks take steps where folds turn past half a radian,
+  // so a sample of four falls back to one at a time with halved steps (eight
+  // times here); at every shared t the angles are the same whole turns from the
+  // same raw angles, so E and dE/dt are equal.
+  std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
+  for (const char* name : {"default.json", "grid-3x3.json", "anti-parallelogram-tube.json", "tilted-axis.json"}) {
+    files.push_back(std::filesystem::path(test::presets) / name);
+  }
+  for (const auto& file : files) {
+    const Design design = load_design(file);
+    for (const double rest : {0.03, 0.97}) {
+      EnergyOptions o;
+      o.rest_t = design.assembly.t_at_fraction(rest);
+      o.stiffness.panels = PanelModel::n4b5;
+      o.samples = 65;
+      const EnergyLandscape fine = energy_landscape(design, o);
+      for (const std::size_t coarse_samples : {std::size_t{5}, std::size_t{9}, std::size_t{17}}) {
+        o.samples = coarse_samples;
+        const EnergyLandscape coarse = energy_landscape(design, o);
+        INFO(file.filename().string() << ", rest at " << rest << ", " << coarse_samples << " samples against 65");
+        for (const EnergySample& c : coarse.samples) {
+          const auto f =
+              std::find_if(fine.samples.begin(), fine.samples.end(), [&](const EnergySample& s) { return s.t == c.t; });
+          REQUIRE(f != fine.samples.end());
+          CHECK(c.energy == f->energy);
+          CHECK(c.rate == f->rate);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("phedra mechanics: JSON fields, files, and every bad option a clear error with exit 2", "[mechanics][cli]") {
   using test::phedra_cli;
   const std::string preset = test::presets + "/parallelogram-tube.json";
