@@ -266,9 +266,10 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
   // Samples rest + direction k for k = first..last, carried from `from`; the last point.
   // Four at a time (FoldEnergy::evaluate_lanes, each lane carried from the one
   // before: what one at a time gives, bit for bit), one at a time where a sample
-  // of the four is a flexion limit, for the last few, and from a sample where a
-  // fold turned by more than half a radian since the one before (carried: the
-  // step halved).
+  // of the four is a flexion limit, for the last few, from a sample where a fold
+  // turned by more than half a radian since the one before (carried: the step
+  // halved), and all of them where the strain needs every member vertex (no
+  // vertex-to-node map: the lanes give no member's nets).
   auto walk = [&](Point from, int direction, std::size_t first, std::size_t last, FoldEnergy::Scratch& scratch) {
     constexpr std::size_t lanes = FoldEnergy::lanes;
     auto index = [&](std::size_t k) { return direction > 0 ? rest + k : rest - k; };
@@ -277,7 +278,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     for (std::size_t k = first; k <= last;) {
       std::array<double, lanes> lane_ts;
       for (std::size_t l = 0; l < lanes && k + l <= last; ++l) lane_ts[l] = ts[index(k + l)];
-      if (last - k + 1 >= lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
+      if (at_nodes && last - k + 1 >= lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
         for (std::size_t l = 0; l < lanes; ++l) {
           fold.lane_nodes(l, scratch);
           states[l] = strain_of(scratch);
