@@ -296,9 +296,10 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
   // FoldEnergy::load_lanes and evaluate_lanes (the landscape's walk, SIMD across
   // samples: the members' recursions, the nodes' writes, the fold kernel) against
   // evaluate() of each lane from the lane before it: E, dE/dt, the largest turn,
-  // every angle, turn, node position and rate; on every shipped preset (open
-  // P-hedra, tubes, arrays with boundary columns and T-junctions), both panel
-  // models, steps small and large (folds turning past half a turn between lanes).
+  // every angle, turn, node position and rate, and the strain from the nodes; on
+  // every shipped preset (open P-hedra, tubes, arrays with boundary columns and
+  // T-junctions), both panel models, steps small and large (folds turning past
+  // half a turn between lanes).
   std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
   for (const auto& entry : std::filesystem::directory_iterator(test::presets)) {
     if (entry.path().extension() == ".json" && entry.path().filename() != "preset.schema.json") files.push_back(entry.path());
@@ -322,6 +323,12 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
         fold.evaluate(design.assembly.t_at_fraction(0.08), {}, near, alone);
         std::array<std::vector<double>, FoldEnergy::lanes> angles;
         const auto values = fold.evaluate_lanes(near, angles, together);
+        const HomogenizedStrain strain(design.assembly, MetricsAxes::structural);
+        const std::optional<std::vector<std::uint32_t>> at_nodes = vertex_nodes(fold, rest);
+        REQUIRE(at_nodes);
+        const Points weights = strain.weights(*at_nodes, fold.model().corner_node_count());
+        std::array<HomogenizedStrain::State, FoldEnergy::lanes> strains;
+        strain.states_of_lanes(together.lane_x.data(), together.lane_v.data(), weights, strains.data());
         for (std::size_t l = 0; l < ts.size(); ++l) {
           std::vector<double> single;
           const FoldEnergy::Value v = fold.evaluate(ts[l], near, single, alone);
@@ -333,10 +340,16 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
           CHECK(angles[l] == single);
           CHECK(together.lane_turns[l] == alone.turns);
           near = single;
-          // The nodes (the strain's) as nodes_at leaves them.
-          fold.lane_nodes(l, together);
-          CHECK(together.x == alone.x);
-          CHECK(together.v == alone.v);
+          // The nodes as nodes_at leaves them, and the strain from them.
+          for (std::size_t i = 0; i < alone.x.size(); ++i) {
+            for (int c = 0; c < 3; ++c) {
+              const std::size_t at = (3 * i + static_cast<std::size_t>(c)) * FoldEnergy::lanes + l;
+              CHECK(together.lane_x[at] == alone.x[i][c]);
+              CHECK(together.lane_v[at] == alone.v[i][c]);
+            }
+          }
+          CHECK(strains[l].stretch == strain.state_of(alone.x, &alone.v, weights).stretch);
+          CHECK(strains[l].rate == strain.state_of(alone.x, &alone.v, weights).rate);
           ++lanes_checked;
         }
       }

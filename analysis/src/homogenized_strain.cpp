@@ -1,12 +1,13 @@
 #include "phedra/homogenized_strain.h"
-
 #include "phedra/cpu_clones.h"
+
 #include "phedra/errors.h"
 #include "phedra/net_writer.h"
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace phedra {
@@ -164,16 +165,20 @@ Points HomogenizedStrain::weights(const std::vector<std::uint32_t>& point_of, st
   return out;
 }
 
-PHEDRA_CPU_CLONES Mat3 HomogenizedStrain::weighted_moment(const Points& x, const Points& weights) const {
-  // sum over the vertices of (x - a) Y^T, the vertices at one point summed first (their Y into its weight).
-  Mat3 out = Mat3::Zero();
-  for (std::size_t q = 0; q < x.size(); ++q) out.noalias() += (x[q] - anchor_) * weights[q].transpose();
-  return out;
-}
-
 HomogenizedStrain::State HomogenizedStrain::state_of(const Points& x, const Points* rates, const Points& weights) const {
+  // (weighted_moment: strain_moment.cpp)
   return state_from(weighted_moment(x, weights) * pseudo_inverse_,
                     rates ? std::optional<Mat3>(weighted_moment(*rates, weights) * pseudo_inverse_) : std::nullopt);
+}
+
+void HomogenizedStrain::states_of_lanes(const double* x, const double* rates, const Points& weights, State* out) const {
+  std::array<Mat3, lanes> moment, rate_moment;
+  weighted_moments_lanes(x, weights, moment.data());
+  if (rates) weighted_moments_lanes(rates, weights, rate_moment.data());
+  for (std::size_t l = 0; l < lanes; ++l) {
+    out[l] = state_from(moment[l] * pseudo_inverse_,
+                        rates ? std::optional<Mat3>(rate_moment[l] * pseudo_inverse_) : std::nullopt);
+  }
 }
 
 HomogenizedStrain::State HomogenizedStrain::state_from(const Mat3& f, const std::optional<Mat3>& df) const {

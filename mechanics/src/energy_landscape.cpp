@@ -44,24 +44,11 @@ void FoldEnergy::nodes_at(double t, Scratch& s) const {
 }
 
 bool FoldEnergy::load_lanes(const double* ts, Scratch& s) const {
-  static_assert(lanes == Assembly::lanes);
+  static_assert(lanes == Assembly::lanes && lanes == HomogenizedStrain::lanes);
   const Assembly& a = design_.assembly;
   s.lane_x.resize(3 * lanes * places_.size());
   s.lane_v.resize(3 * lanes * places_.size());
   return a.vertices_lanes(ts, places_, places_by_row_, s.lane_x.data(), s.lane_v.data(), s.assembly_lanes);
-}
-
-void FoldEnergy::lane_nodes(std::size_t lane, Scratch& s) const {
-  const std::size_t n = places_.size();
-  s.x.resize(n);
-  s.v.resize(n);
-  s.finite = true;
-  const double* x = s.lane_x.data() + lane;
-  const double* v = s.lane_v.data() + lane;
-  for (std::size_t i = 0; i < n; ++i, x += 3 * lanes, v += 3 * lanes) {
-    s.x[i] = Vec3(x[0], x[lanes], x[2 * lanes]);
-    s.v[i] = Vec3(v[0], v[lanes], v[2 * lanes]);
-  }
 }
 
 std::array<FoldEnergy::Value, FoldEnergy::lanes> FoldEnergy::evaluate_lanes(
@@ -279,10 +266,7 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
       std::array<double, lanes> lane_ts;
       for (std::size_t l = 0; l < lanes && k + l <= last; ++l) lane_ts[l] = ts[index(k + l)];
       if (at_nodes && last - k + 1 >= lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
-        for (std::size_t l = 0; l < lanes; ++l) {
-          fold.lane_nodes(l, scratch);
-          states[l] = strain_of(scratch);
-        }
+        strain.states_of_lanes(scratch.lane_x.data(), scratch.lane_v.data(), strain_weights, states.data());
         const std::array<FoldEnergy::Value, lanes> values = fold.evaluate_lanes(from.angles, lane_angles, scratch);
         std::size_t l = 0;
         for (; l < lanes && values[l].largest_turn <= 0.5; ++l) {

@@ -66,6 +66,12 @@ class HomogenizedStrain {
   /// The same state from those points' positions (and rates) and their weights:
   /// the sums over the vertices, each point once.
   State state_of(const Points& x, const Points* rates, const Points& weights) const;
+  /// Samples evaluated together (the energy landscape's): four at once.
+  static constexpr std::size_t lanes = 4;
+  /// state_of(x, rates, weights) of `lanes` samples at once, their points'
+  /// positions and rates (null: none) side by side, [point][coordinate][lane],
+  /// into out[0..lanes): each the same bits as that sample's state_of.
+  void states_of_lanes(const double* x, const double* rates, const Points& weights, State* out) const;
   /// The positions of the last evaluation (at(t) ends with t's).
   const AssemblyConfiguration& configuration() const { return configuration_; }
 
@@ -78,6 +84,7 @@ class HomogenizedStrain {
   /// The same from canonical nets (positions, or `rates`: their rates).
   Mat3 canonical_moment(const std::vector<NetState>& states, bool rates) const;
   Mat3 weighted_moment(const Points& x, const Points& weights) const;
+  void weighted_moments_lanes(const double* x, const Points& weights, Mat3* out) const;
   State state_from(const Mat3& f, const std::optional<Mat3>& df) const;
   void evaluate(double t) const;
 

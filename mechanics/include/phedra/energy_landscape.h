@@ -122,8 +122,6 @@ class FoldEnergy {
   /// nodes_at gives, bit for bit. False when one is at a flexion limit (no
   /// rates: such a sample is evaluated alone).
   bool load_lanes(const double* ts, Scratch& scratch) const;
-  /// Lane `lane`'s nodes (load_lanes) into scratch.x and scratch.v, as nodes_at leaves them.
-  void lane_nodes(std::size_t lane, Scratch& scratch) const;
   /// E, dE/dt and the continuous angles of the `lanes` samples loaded (all with
   /// rates), lane l's angles carried from lane l - 1's and lane 0's from `near`
   /// (not empty), its turns into scratch.lane_turns[l]: each lane what evaluate()
