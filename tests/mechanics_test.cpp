@@ -61,6 +61,15 @@ double merlin_angle(const HingeNodes& x) {
   return he < 0 ? he + 2 * pi : he;
 }
 
+/// The energy landscape's options with the rest state at `fraction` of the
+/// flexion interval, n4b5 panels (every preset takes them).
+EnergyOptions rest_at(const Design& design, double fraction) {
+  EnergyOptions o;
+  o.rest_t = design.assembly.t_at_fraction(fraction);
+  o.stiffness.panels = PanelModel::n4b5;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("hinge angle: pi flat, MERLIN2's value, continuous across 0 and 2 pi", "[mechanics]") {
@@ -541,7 +550,7 @@ TEST_CASE("the energy landscape at rest a hair inside a flexion limit: the rest 
   CHECK(e.equilibria.front().energy == Approx(0.0).margin(1e-20));
 }
 
-TEST_CASE("the energy landscape on two threads (halves of the samples) equals one walk, bit for bit", "[mechanics]") {
+TEST_CASE("the energy landscape on two threads (halves of the samples) equals one walk, bit for bit, forces too", "[mechanics]") {
   // The rest state near either end (one side nearly all the samples: the far part
   // of the longer side starts afresh on the second thread and is joined), on every
   // shipped preset and the bistable design.
@@ -556,9 +565,7 @@ TEST_CASE("the energy landscape on two threads (halves of the samples) equals on
   for (const auto& file : files) {
     const Design design = load_design(file);
     for (const double rest : {0.03, 0.97}) {
-      EnergyOptions o;
-      o.rest_t = design.assembly.t_at_fraction(rest);
-      o.stiffness.panels = PanelModel::n4b5;
+      EnergyOptions o = rest_at(design, rest);
       const std::size_t folds = FoldEnergy(design, o.rest_t, o.stiffness).model().fold_count();
       o.samples = std::max<std::size_t>(101, static_cast<std::size_t>(2e5 / static_cast<double>(folds)) + 2);
       const EnergyLandscape two = energy_landscape(design, o);
@@ -569,6 +576,8 @@ TEST_CASE("the energy landscape on two threads (halves of the samples) equals on
       for (std::size_t i = 0; i < one.samples.size(); ++i) {
         CHECK(two.samples[i].energy == one.samples[i].energy);
         CHECK(two.samples[i].rate == one.samples[i].rate);
+        CHECK(two.samples[i].length == one.samples[i].length);
+        CHECK(two.samples[i].force == one.samples[i].force);
       }
       REQUIRE(two.equilibria.size() == one.equilibria.size());
       for (std::size_t i = 0; i < one.equilibria.size(); ++i) CHECK(two.equilibria[i].t == one.equilibria[i].t);
@@ -589,9 +598,7 @@ TEST_CASE("the energy landscape's coarse samples are its fine samples, bit for b
   for (const auto& file : files) {
     const Design design = load_design(file);
     for (const double rest : {0.03, 0.97}) {
-      EnergyOptions o;
-      o.rest_t = design.assembly.t_at_fraction(rest);
-      o.stiffness.panels = PanelModel::n4b5;
+      EnergyOptions o = rest_at(design, rest);
       o.samples = 65;
       const EnergyLandscape fine = energy_landscape(design, o);
       for (const std::size_t coarse_samples : {std::size_t{5}, std::size_t{9}, std::size_t{17}}) {
@@ -604,6 +611,8 @@ TEST_CASE("the energy landscape's coarse samples are its fine samples, bit for b
           REQUIRE(f != fine.samples.end());
           CHECK(c.energy == f->energy);
           CHECK(c.rate == f->rate);
+          CHECK(c.length == f->length);
+          CHECK(c.force == f->force);
         }
       }
     }
