@@ -119,8 +119,8 @@ void gltf_export(benchmark::State& state) {
 
 /// The energy landscape's parts on the mechanics bench's 10 x 10 array (`phedra
 /// bench` mechanics.energy_1000_s): one sample (0: the corner nodes' positions and rates, 1: the
-/// whole evaluation of E and dE/dt), and the landscape of 1000 samples (2; 3:
-/// on one thread).
+/// whole evaluation of E and dE/dt), the landscape of 1000 samples (2; 3:
+/// on one thread), and its set-up before the walk (4: the fold model at the rest state).
 void energy(benchmark::State& state) {
   const Design array = bench::mechanics_array(10, 45);
   const double rest = array.assembly.t_star();
@@ -138,6 +138,8 @@ void energy(benchmark::State& state) {
       benchmark::DoNotOptimize(scratch.x.data());
     } else if (state.range(0) == 1) {
       benchmark::DoNotOptimize(fold.evaluate(t, fold.rest_angles(), angles, scratch));
+    } else if (state.range(0) == 4) {
+      benchmark::DoNotOptimize(FoldEnergy(array, rest, StiffnessOptions{}).rest_angles().data());
     } else {
       benchmark::DoNotOptimize(energy_landscape(array, options).folds);
     }
@@ -153,5 +155,5 @@ BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
-BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -8,10 +8,12 @@
 #include "phedra/number_format.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <map>
-#include <set>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace phedra {
 
@@ -60,6 +62,22 @@ struct EdgeUse {
 
 std::string panel_name(std::size_t face) { return "panel " + std::to_string(face); }
 
+/// An unordered pair of node indices as one key (hashed: a std::map of 60,000
+/// edges took about a third of the model's construction on a 10^4-panel array).
+std::uint64_t edge_key(std::size_t a, std::size_t b) {
+  const auto [lo, hi] = std::minmax(a, b);
+  return (static_cast<std::uint64_t>(lo) << 32) | static_cast<std::uint64_t>(hi);
+}
+
+/// A face's sorted corner nodes (a triangle's fourth SIZE_MAX), hashed.
+struct CornerSetHash {
+  std::size_t operator()(const std::array<std::size_t, 4>& c) const {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (std::size_t v : c) h = (h ^ static_cast<std::uint64_t>(v)) * 0xff51afd7ed558ccdull;
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+
 }  // namespace
 
 ModelMesh model_mesh(const Design& design, const AssemblyConfiguration& at) {
@@ -78,7 +96,8 @@ ModelMesh model_mesh(const Design& design, const AssemblyConfiguration& at) {
     }
     return n;
   };
-  std::set<std::vector<std::size_t>> seen;  // sorted node sets
+  std::unordered_set<std::array<std::size_t, 4>, CornerSetHash> seen;  // sorted node sets
+  seen.reserve(mesh.faces.size());
   for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
     std::array<std::size_t, 4> c{};
     for (int k = 0; k < 4; ++k) c[k] = node(mesh.faces[f][k]);
@@ -96,7 +115,9 @@ ModelMesh model_mesh(const Design& design, const AssemblyConfiguration& at) {
                                                  (nodes == 3 ? " (two opposite corners meet: not a triangle)" : "") +
                                                  ": the bar-and-hinge model has no panel for it (a degenerate panel)");
     }
-    if (!seen.insert(key).second) {
+    std::array<std::size_t, 4> sorted_key{SIZE_MAX, SIZE_MAX, SIZE_MAX, SIZE_MAX};
+    std::copy(key.begin(), key.end(), sorted_key.begin());
+    if (!seen.insert(sorted_key).second) {
       ++out.dropped_faces;  // a wall two cells share, modelled once
       continue;
     }
@@ -120,15 +141,17 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
   std::vector<ModelPanel>& panels = mesh_.panels;
 
   // Bars on the panels' edges, their uses, diagonals or spokes and bending hinges.
-  std::map<std::pair<std::size_t, std::size_t>, std::size_t> bar_of;
+  std::unordered_map<std::uint64_t, std::size_t> bar_of;
+  bar_of.reserve(3 * panels.size());
   std::vector<std::vector<EdgeUse>> uses;
+  auto new_bar = [&](std::size_t a, std::size_t b) {
+    bars_.push_back({{a, b}, (positions_[b] - positions_[a]).norm(), options.bar});
+    uses.emplace_back();
+    return bars_.size() - 1;
+  };
   auto bar = [&](std::size_t a, std::size_t b) {
-    const auto key = std::minmax(a, b);
-    auto [it, added] = bar_of.emplace(key, bars_.size());
-    if (added) {
-      bars_.push_back({{a, b}, (positions_[b] - positions_[a]).norm(), options.bar});
-      uses.emplace_back();
-    }
+    auto [it, added] = bar_of.emplace(edge_key(a, b), bars_.size());
+    if (added) new_bar(a, b);
     return it->second;
   };
   std::vector<Hinge> bends;
@@ -177,7 +200,7 @@ BarHingeModel::BarHingeModel(const Design& design, const AssemblyConfiguration& 
         p.centre = positions_.size();
         positions_.push_back(centre);
         for (std::size_t k = 0; k < 4; ++k) {
-          const std::size_t b = bar(*p.centre, v[k]);
+          const std::size_t b = new_bar(*p.centre, v[k]);  // the centre is a new node: no other bar has it
           bends.push_back({{*p.centre, v[k], v[(k + 3) % 4], v[(k + 1) % 4]}, HingeKind::bend, bars_[b].length,
                            options.bend, {pi, pi}});
           wing[k] = *p.centre;
