@@ -202,6 +202,9 @@ template <std::size_t L>
       std::int8_t* whole_turns = turns[l];
       const double* raws = theta + l * block_size;
       const double* rates = rate + l * block_size;
+      // The lane's sums in registers through the block (indexed by l in the arrays they
+      // stayed in memory: each fold's update waited for the store of the one before).
+      Four energy_l = energy_sum[l], rate_l = rate_sum[l], largest_l = largest[l];
       const std::size_t whole_partials = count / partial * partial;
       for (std::size_t i = 0; i < whole_partials; i += partial) {
         const std::size_t h = h0 + i;
@@ -216,7 +219,7 @@ template <std::size_t L>
           const Four continuous = raw + turn * whole;
           Four off = continuous - n;
           off = off < 0.0 ? -off : off;
-          largest[l] = largest[l] < off ? off : largest[l];
+          largest_l = largest_l < off ? off : largest_l;
           std::memcpy(out + h, &continuous, sizeof continuous);
           std::memcpy(&d, rest + h, sizeof d);
           d = continuous - d;
@@ -230,8 +233,8 @@ template <std::size_t L>
         std::memcpy(&w, weight + h, sizeof w);
         std::memcpy(&r, rates + i, sizeof r);
         const Four wd = w * d;
-        energy_sum[l] += wd * d;
-        rate_sum[l] += wd * r;
+        energy_l += wd * d;
+        rate_l += wd * r;
       }
       for (std::size_t i = whole_partials; i < count; ++i) {  // the last block's last folds, one at a time
         const std::size_t h = h0 + i, s = i % partial;
@@ -244,12 +247,13 @@ template <std::size_t L>
           whole = whole_turns[h];
         }
         const double continuous = raw + turn * whole;
-        if (near) largest[l][s] = std::max(largest[l][s], std::abs(continuous - near[h]));
+        if (near) largest_l[s] = std::max(largest_l[s], std::abs(continuous - near[h]));
         out[h] = continuous;
         const double d = continuous - rest[h], wd = weight[h] * d;
-        energy_sum[l][s] += wd * d;
-        rate_sum[l][s] += wd * rates[i];
+        energy_l[s] += wd * d;
+        rate_l[s] += wd * rates[i];
       }
+      energy_sum[l] = energy_l, rate_sum[l] = rate_l, largest[l] = largest_l;
     }
   }
   for (std::size_t l = 0; l < L; ++l) {
