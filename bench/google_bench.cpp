@@ -14,6 +14,9 @@
 #include "phedra/keep_buildable.h"
 #include "phedra/assembly_mesh.h"
 #include "phedra/energy_landscape.h"
+#include "phedra/stiffness_modes.h"
+
+#include "../mechanics/src/node_cholesky.h"  // internal to mechanics/: its factorization and solve apart
 
 #include <benchmark/benchmark.h>
 
@@ -147,6 +150,38 @@ void energy(benchmark::State& state) {
   state.counters["folds"] = static_cast<double>(fold.model().fold_count());
 }
 
+/// The modes' parts on the same array (`phedra bench` mechanics.modes_array_s, n5b8):
+/// 0 the whole figure (the model, K, the largest eigenvalue, 6 eigenpairs, the
+/// alignment), 1 the Cholesky factor of K + delta I (ordering, analysis,
+/// factorization), 2 one solve with it.
+void modes(benchmark::State& state) {
+  const Design array = bench::mechanics_array(10, 45);
+  const double t = array.assembly.t_star();
+  AssemblyConfiguration c;
+  std::vector<Points> rates;
+  array.assembly.evaluate_rate(t, c, rates);
+  StiffnessOptions options;
+  options.panels = PanelModel::n5b8;
+  const BarHingeModel model(array, c, options);
+  Points v;
+  model.node_rates(rates, v);
+  const Eigen::SparseMatrix<double> k = model.stiffness();
+  const double shift = 1e-10 * k.diagonal().maxCoeff();  // analyze_modes's
+  const std::unique_ptr<NodeCholesky> factor = state.range(0) == 2 ? std::make_unique<NodeCholesky>(k, shift) : nullptr;
+  Eigen::VectorXd x = Eigen::VectorXd::Ones(k.rows());
+  for (auto _ : state) {
+    if (state.range(0) == 0) {
+      const BarHingeModel m(array, c, options);
+      benchmark::DoNotOptimize(analyze_modes(m, flatten(v), 6).eigenvalues.data());
+    } else if (state.range(0) == 1) {
+      benchmark::DoNotOptimize(NodeCholesky(k, shift));
+    } else {
+      factor->solve(x.data(), x.data());
+      benchmark::DoNotOptimize(x.data());
+    }
+  }
+}
+
 BENCHMARK(evaluate)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(write_buffer)->RangeMultiplier(10)->Range(1000, 10000000)->Unit(benchmark::kMicrosecond);
 BENCHMARK(flexion_interval)->Arg(10000)->Unit(benchmark::kMillisecond);
@@ -155,5 +190,6 @@ BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -18,6 +18,7 @@
 #include "../mechanics/src/fold_kernel.h"   // FoldKernel (internal to mechanics/)
 #include "../mechanics/src/block_assembly.h"  // BlockAssembly (internal to mechanics/)
 #include "../mechanics/src/vertex_nodes.h"    // vertex_nodes (internal to mechanics/)
+#include "../mechanics/src/node_cholesky.h"   // NodeCholesky (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 
@@ -391,6 +392,59 @@ TEST_CASE("the stiffness's block assembly equals a dense sum of the same blocks,
     const Eigen::SparseMatrix<double> sparse = k.matrix();
     REQUIRE(sparse.isCompressed());
     CHECK((Eigen::MatrixXd(sparse) - dense).cwiseAbs().maxCoeff() <= 1e-12);
+  }
+}
+
+TEST_CASE("the stiffness's Cholesky factor solves K + shift I: random node graphs and K itself, against a dense solve",
+          "[mechanics]") {
+  std::mt19937_64 rng(3607);
+  const auto check = [](const Eigen::SparseMatrix<double>& a, double shift) {
+    const NodeCholesky factor(a, shift);
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(a) + shift * Eigen::MatrixXd::Identity(a.rows(), a.cols());
+    const Eigen::LLT<Eigen::MatrixXd> llt(dense);
+    REQUIRE(llt.info() == Eigen::Success);
+    for (int rhs = 0; rhs < 2; ++rhs) {
+      const Eigen::VectorXd b = Eigen::VectorXd::Random(a.rows());
+      Eigen::VectorXd x(a.rows());
+      factor.solve(b.data(), x.data());
+      const Eigen::VectorXd expected = llt.solve(b);
+      CHECK((x - expected).norm() <= 1e-9 * expected.norm());
+      factor.solve(b.data(), const_cast<double*>(b.data()));  // in place
+      CHECK((b - x).norm() == 0.0);
+    }
+  };
+  // Random node graphs (elements of 1-5 nodes, 3 x 3 blocks): diagonally dominant, so
+  // positive definite; sizes whose supernodes are 1..3 columns and wider than four.
+  for (int round = 0; round < 12; ++round) {
+    const std::size_t nodes = 2 + static_cast<std::size_t>(test::uniform(rng, 0, 120));
+    std::vector<std::vector<std::size_t>> elements(nodes + static_cast<std::size_t>(test::uniform(rng, 0, 200)));
+    for (auto& e : elements) {
+      e.resize(static_cast<std::size_t>(test::uniform(rng, 1, 5.99)));
+      for (auto& v : e) v = static_cast<std::size_t>(test::uniform(rng, 0, static_cast<double>(nodes) - 1e-9));
+    }
+    for (std::size_t i = 0; i < nodes; ++i) elements[i] = {i};  // every diagonal block present
+    std::vector<std::span<const std::size_t>> spans(elements.begin(), elements.end());
+    BlockAssembly assembly(nodes, spans);
+    for (const auto& e : elements) {
+      for (std::size_t r : e) {
+        for (std::size_t c : e) {
+          const Mat3 block = r == c ? Mat3(Mat3::Identity() * 60.0) : Mat3(Mat3::Constant(0.5));
+          assembly.add(r, c, block);
+        }
+      }
+    }
+    check(assembly.matrix(), test::uniform(rng, 0.0, 1.0));
+  }
+  // K of a design (positive semi-definite: six rigid motions), shifted as the modes shift it.
+  const Design design = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
+  for (PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
+    StiffnessOptions options;
+    options.panels = panels;
+    const BarHingeModel model(design, design.assembly.evaluate(design.assembly.t_at_fraction(0.4)), options);
+    const Eigen::SparseMatrix<double> k = model.stiffness();
+    check(k, 1e-6 * k.diagonal().maxCoeff());
+    // Not positive definite: a clear internal error, nothing printed.
+    CHECK_THROWS_AS(NodeCholesky(k, -1.0), Error);
   }
 }
 

@@ -528,8 +528,8 @@ class Runner {
   }
 
   void mechanics_figures() {
-    // One core: BLAS is Debian's serial OpenBLAS; CHOLMOD's OpenMP parts follow OMP_NUM_THREADS
-    // (docs/performance.md runs the bench with OMP_NUM_THREADS=1).
+    // One core: BLAS is Debian's serial OpenBLAS, and CHOLMOD's OpenMP loops (a fixed 4
+    // threads in Debian's CHOLMOD) run on the calling thread (mechanics/src/cholmod_threads.h).
     const std::size_t cells = options_.quick ? 3 : 10;
     {
       announce("mechanics, the stiffness's modes of arrays");

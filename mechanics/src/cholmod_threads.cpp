@@ -2,6 +2,8 @@
 
 #ifdef PHEDRA_CHOLMOD
 #include <dlfcn.h>
+
+#include <initializer_list>
 #endif
 
 namespace phedra {

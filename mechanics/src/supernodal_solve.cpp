@@ -1,0 +1,138 @@
+#include "supernodal_solve.h"
+
+#include "phedra/cpu_clones.h"
+
+#include <cstddef>
+#include <cstring>
+
+namespace phedra {
+namespace {
+
+// Four doubles (GCC's and Clang's vector extension: one AVX register, or two SSE2 ones).
+// The helpers that pass them are always inlined and have internal linkage: no call
+// crosses an ABI boundary, so GCC's note that 32-byte vectors pass differently
+// without AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+typedef double Lane4 __attribute__((vector_size(32)));
+
+// Always inlined: each clone gets its own (AVX2 registers in the x86-64-v3 one).
+[[gnu::always_inline]] inline Lane4 load4(const double* p) {
+  Lane4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+[[gnu::always_inline]] inline void store4(double* p, Lane4 v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline double sum4(Lane4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
+
+/// y[0..n) -= sum over k < w of column k (entries c + k ld ..) times x[k]; w <= 4.
+[[gnu::always_inline]] inline void subtract_columns(double* y, int n, const double* c, std::size_t ld, const double* x,
+                                                    int w) {
+  int i = 0;
+  if (w == 4) {
+    const double x0 = x[0], x1 = x[1], x2 = x[2], x3 = x[3];
+    const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld;
+    for (; i + 4 <= n; i += 4) {
+      store4(y + i, load4(y + i) - (load4(c0 + i) * x0 + load4(c1 + i) * x1 + load4(c2 + i) * x2 + load4(c3 + i) * x3));
+    }
+    for (; i < n; ++i) y[i] -= c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3;
+    return;
+  }
+  for (int k = 0; k < w; ++k) {
+    const double* ck = c + static_cast<std::size_t>(k) * ld;
+    const double xk = x[k];
+    for (i = 0; i + 4 <= n; i += 4) store4(y + i, load4(y + i) - load4(ck + i) * xk);
+    for (; i < n; ++i) y[i] -= ck[i] * xk;
+  }
+}
+
+/// r[k] += column k (entries c + k ld ..) . v[0..n), for k < w; w <= 4.
+[[gnu::always_inline]] inline void add_dots(double* r, int n, const double* c, std::size_t ld, const double* v, int w) {
+  int i = 0;
+  if (w == 4) {
+    const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld;
+    Lane4 s0 = {0.0, 0.0, 0.0, 0.0}, s1 = s0, s2 = s0, s3 = s0;
+    for (; i + 4 <= n; i += 4) {
+      const Lane4 t = load4(v + i);
+      s0 += load4(c0 + i) * t;
+      s1 += load4(c1 + i) * t;
+      s2 += load4(c2 + i) * t;
+      s3 += load4(c3 + i) * t;
+    }
+    double r0 = sum4(s0), r1 = sum4(s1), r2 = sum4(s2), r3 = sum4(s3);
+    for (; i < n; ++i) {
+      r0 += c0[i] * v[i];
+      r1 += c1[i] * v[i];
+      r2 += c2[i] * v[i];
+      r3 += c3[i] * v[i];
+    }
+    r[0] += r0;
+    r[1] += r1;
+    r[2] += r2;
+    r[3] += r3;
+    return;
+  }
+  for (int k = 0; k < w; ++k) {
+    const double* ck = c + static_cast<std::size_t>(k) * ld;
+    Lane4 s = {0.0, 0.0, 0.0, 0.0};
+    for (i = 0; i + 4 <= n; i += 4) s += load4(ck + i) * load4(v + i);
+    double rk = sum4(s);
+    for (; i < n; ++i) rk += ck[i] * v[i];
+    r[k] += rk;
+  }
+}
+
+}  // namespace
+
+PHEDRA_CPU_CLONES void supernodal_solve(const SupernodalFactor& l, double* x, double* work) {
+  // L y = x: each supernode's columns in blocks of four: the block's triangle,
+  // then the rows below it (the supernode's own, then its rectangle into work,
+  // scattered to x at the end).
+  for (int s = 0; s < l.supernodes; ++s) {
+    const int first = l.super[s], columns = l.super[s + 1] - first;
+    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
+    const std::size_t ld = static_cast<std::size_t>(height);
+    const double* a = l.values + l.value_start[s];
+    double* xs = x + first;
+    for (int i = 0; i < below; ++i) work[i] = 0.0;
+    for (int jb = 0; jb < columns; jb += 4) {
+      const int w = columns - jb < 4 ? columns - jb : 4;
+      const double* block = a + static_cast<std::size_t>(jb) * ld;
+      for (int j = 0; j < w; ++j) {
+        const double* column = block + static_cast<std::size_t>(j) * ld;
+        const double xj = xs[jb + j] /= column[jb + j];
+        for (int i = j + 1; i < w; ++i) xs[jb + i] -= column[jb + i] * xj;
+      }
+      subtract_columns(xs + jb + w, columns - jb - w, block + jb + w, ld, xs + jb, w);
+      subtract_columns(work, below, block + columns, ld, xs + jb, w);
+    }
+    const int* rows = l.rows + l.row_start[s] + columns;
+    for (int i = 0; i < below; ++i) x[rows[i]] += work[i];  // work holds minus the products
+  }
+  // L^T x = y: the supernodes in reverse, each block of four columns from the last.
+  for (int s = l.supernodes - 1; s >= 0; --s) {
+    const int first = l.super[s], columns = l.super[s + 1] - first;
+    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
+    const std::size_t ld = static_cast<std::size_t>(height);
+    const double* a = l.values + l.value_start[s];
+    double* xs = x + first;
+    const int* rows = l.rows + l.row_start[s] + columns;
+    for (int i = 0; i < below; ++i) work[i] = x[rows[i]];
+    for (int jb = (columns - 1) / 4 * 4; jb >= 0; jb -= 4) {
+      const int w = columns - jb < 4 ? columns - jb : 4;
+      const double* block = a + static_cast<std::size_t>(jb) * ld;
+      double r[4] = {0.0, 0.0, 0.0, 0.0};
+      add_dots(r, below, block + columns, ld, work, w);
+      add_dots(r, columns - jb - w, block + jb + w, ld, xs + jb + w, w);
+      for (int j = w - 1; j >= 0; --j) {
+        const double* column = block + static_cast<std::size_t>(j) * ld;
+        double sum = r[j];
+        for (int i = j + 1; i < w; ++i) sum += column[jb + i] * xs[jb + i];
+        xs[jb + j] = (xs[jb + j] - sum) / column[jb + j];
+      }
+    }
+  }
+}
+
+}  // namespace phedra

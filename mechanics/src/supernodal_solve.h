@@ -1,0 +1,28 @@
+#pragma once
+// The two triangular solves with a supernodal Cholesky factor (internal to mechanics/).
+//
+// CHOLMOD's own solve calls BLAS's dtrsv and dgemv once a supernode: on the
+// 10^4-panel array's factor (2,348 supernodes, 306 MB) 31-33 ms a solve. These
+// loops read each entry of the factor once a pass, four columns at a time
+// (register-blocked), compiled for AVX2 and the baseline (PHEDRA_CPU_CLONES):
+// 27-29 ms, near this machine's streaming bandwidth (docs/performance.md).
+
+namespace phedra {
+
+/// A supernodal lower-triangular factor L in CHOLMOD's layout (cholmod_factor
+/// with is_super): supernode s holds columns super[s] .. super[s+1]-1, its row
+/// indices rows[row_start[s] ..] (its own columns first), its values column-
+/// major from values + value_start[s], leading dimension its row count.
+struct SupernodalFactor {
+  int supernodes = 0;
+  const int* super = nullptr;
+  const int* row_start = nullptr;
+  const int* value_start = nullptr;
+  const int* rows = nullptr;
+  const double* values = nullptr;
+};
+
+/// x = (L L^T)^-1 x in L's (permuted) order; work holds as many doubles as L has rows.
+void supernodal_solve(const SupernodalFactor& l, double* x, double* work);
+
+}  // namespace phedra
