@@ -153,7 +153,7 @@ void energy(benchmark::State& state) {
 /// The modes' parts on the same array (`phedra bench` mechanics.modes_array_s, n5b8):
 /// 0 the whole figure (the model, K, the largest eigenvalue, 6 eigenpairs, the
 /// alignment), 1 the Cholesky factor of K + delta I (ordering, analysis,
-/// factorization), 2 one solve with it.
+/// factorization), 2 one solve with it, 3 one solve of four right-hand sides.
 void modes(benchmark::State& state) {
   const Design array = bench::mechanics_array(10, 45);
   const double t = array.assembly.t_star();
@@ -167,17 +167,21 @@ void modes(benchmark::State& state) {
   model.node_rates(rates, v);
   const Eigen::SparseMatrix<double> k = model.stiffness();
   const double shift = 1e-10 * k.diagonal().maxCoeff();  // analyze_modes's
-  const std::unique_ptr<NodeCholesky> factor = state.range(0) == 2 ? std::make_unique<NodeCholesky>(k, shift) : nullptr;
+  const std::unique_ptr<NodeCholesky> factor = state.range(0) >= 2 ? std::make_unique<NodeCholesky>(k, shift) : nullptr;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(k.rows());
+  Eigen::MatrixXd x4 = Eigen::MatrixXd::Ones(k.rows(), 4);
   for (auto _ : state) {
     if (state.range(0) == 0) {
       const BarHingeModel m(array, c, options);
       benchmark::DoNotOptimize(analyze_modes(m, flatten(v), 6).eigenvalues.data());
     } else if (state.range(0) == 1) {
       benchmark::DoNotOptimize(NodeCholesky(k, shift));
-    } else {
+    } else if (state.range(0) == 2) {
       factor->solve(x.data(), x.data());
       benchmark::DoNotOptimize(x.data());
+    } else {
+      factor->solve4(x4.data(), x4.data());
+      benchmark::DoNotOptimize(x4.data());
     }
   }
 }
@@ -190,6 +194,6 @@ BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
-BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
 BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

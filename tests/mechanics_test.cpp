@@ -12,6 +12,7 @@
 #include "phedra/homogenized_strain.h"
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/mechanics_figures.h"
+#include "phedra/bench_cases.h"
 #include "support/cli_run.h"
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 #include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
@@ -19,8 +20,10 @@
 #include "../mechanics/src/block_assembly.h"  // BlockAssembly (internal to mechanics/)
 #include "../mechanics/src/vertex_nodes.h"    // vertex_nodes (internal to mechanics/)
 #include "../mechanics/src/node_cholesky.h"   // NodeCholesky (internal to mechanics/)
+#include "../mechanics/src/block_lanczos.h"   // block_lanczos_largest (internal to mechanics/)
 
 #include <catch2/catch.hpp>
+#include <Spectra/SymEigsShiftSolver.h>
 
 #include <Eigen/Dense>
 
@@ -395,7 +398,7 @@ TEST_CASE("the stiffness's block assembly equals a dense sum of the same blocks,
   }
 }
 
-TEST_CASE("the stiffness's Cholesky factor solves K + shift I: random node graphs and K itself, against a dense solve",
+TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four right-hand sides): random node graphs and K itself, against a dense solve",
           "[mechanics]") {
   std::mt19937_64 rng(3607);
   const auto check = [](const Eigen::SparseMatrix<double>& a, double shift) {
@@ -411,6 +414,13 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I: random node graph
       CHECK((x - expected).norm() <= 1e-9 * expected.norm());
       factor.solve(b.data(), const_cast<double*>(b.data()));  // in place
       CHECK((b - x).norm() == 0.0);
+    }
+    const Eigen::MatrixXd b4 = Eigen::MatrixXd::Random(a.rows(), 4);
+    Eigen::MatrixXd x4(a.rows(), 4);
+    factor.solve4(b4.data(), x4.data());
+    for (Eigen::Index r = 0; r < 4; ++r) {
+      const Eigen::VectorXd expected = llt.solve(b4.col(r));
+      CHECK((x4.col(r) - expected).norm() <= 1e-9 * expected.norm());
     }
   };
   // Random node graphs (elements of 1-5 nodes, 3 x 3 blocks): diagonally dominant, so
@@ -445,6 +455,92 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I: random node graph
     check(k, 1e-6 * k.diagonal().maxCoeff());
     // Not positive definite: a clear internal error, nothing printed.
     CHECK_THROWS_AS(NodeCholesky(k, -1.0), Error);
+  }
+}
+
+TEST_CASE("block Lanczos: the largest eigenpairs of (K + shift I)^-1 off the rigid motions, against a dense solve",
+          "[mechanics]") {
+  const Design design = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
+  for (PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
+    StiffnessOptions options;
+    options.panels = panels;
+    const BarHingeModel model(design, design.assembly.evaluate(design.assembly.t_at_fraction(0.4)), options);
+    const Eigen::SparseMatrix<double> k = model.stiffness();
+    const Eigen::MatrixXd rigid = rigid_motion_basis(model.positions());
+    const double shift = 1e-10 * k.diagonal().maxCoeff();
+    const NodeCholesky factor(k, shift);
+    const auto project = [&](Eigen::MatrixXd& x) { x -= rigid * (rigid.transpose() * x); };
+    const ApplyFour apply = [&](const Eigen::MatrixXd& in, Eigen::MatrixXd& out) {
+      Eigen::MatrixXd x = in;
+      project(x);
+      out.resize(in.rows(), 4);
+      factor.solve4(x.data(), out.data());
+      project(out);
+    };
+    std::mt19937_64 rng(3608);
+    Eigen::MatrixXd start(k.rows(), 4);
+    for (Eigen::Index i = 0; i < start.size(); ++i) start.data()[i] = test::uniform(rng, -1, 1);
+    project(start);
+    for (Eigen::Index nev : {1, 6, 10}) {
+      INFO(to_string(panels) << " nev " << nev << " rows " << k.rows());
+      const std::optional<Eigen::MatrixXd> v = block_lanczos_largest(apply, start, nev, 1e-6, 200);
+      REQUIRE(v.has_value());
+      // The dense truth: K's eigenvalues off the rigid motions, ascending (the inverse's largest).
+      const Eigen::HouseholderQR<Eigen::MatrixXd> qr(rigid);
+      const Eigen::MatrixXd q = Eigen::MatrixXd(qr.householderQ()).rightCols(k.rows() - 6);
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> dense(q.transpose() * (Eigen::MatrixXd(k) * q));
+      for (Eigen::Index i = 0; i < nev; ++i) {
+        const Eigen::VectorXd x = v->col(i);
+        CHECK(std::abs(x.norm() - 1.0) <= 1e-12);
+        CHECK((rigid.transpose() * x).norm() <= 1e-9);
+        const double lambda = x.dot(k * x);
+        CHECK(std::abs(lambda - dense.eigenvalues()(i)) <= 1e-8 * dense.eigenvalues()(i));
+      }
+    }
+    // A basis too small to converge: empty (the caller falls back to Spectra).
+    CHECK_FALSE(block_lanczos_largest(apply, start, 6, 1e-14, 12).has_value());
+  }
+}
+
+TEST_CASE("the modes of a 10^4-row model (block Lanczos) equal Spectra's single-vector Lanczos on the same factor",
+          "[mechanics]") {
+  const Design array = bench::mechanics_array(10, 11);  // 11,616 rows: the block method's side of the line
+  StiffnessOptions options;
+  options.panels = PanelModel::n5b8;
+  const BarHingeModel model(array, array.assembly.evaluate(array.assembly.t_star()), options);
+  const Eigen::SparseMatrix<double> k = model.stiffness();
+  REQUIRE(k.rows() >= 10000);
+  const Eigen::MatrixXd rigid = rigid_motion_basis(model.positions());
+  const Eigenpairs pairs = smallest_eigenpairs(k, rigid, 6);
+  // Spectra on an operator of the test's own: P (K + shift I)^-1 P with the same factor type.
+  struct Operator {
+    using Scalar = double;
+    const Eigen::SparseMatrix<double>& k;
+    const Eigen::MatrixXd& rigid;
+    NodeCholesky factor;
+    Eigen::Index rows() const { return k.rows(); }
+    Eigen::Index cols() const { return k.cols(); }
+    void set_shift(double) {}
+    void perform_op(const double* in, double* out) const {
+      Eigen::VectorXd x = Eigen::Map<const Eigen::VectorXd>(in, k.rows());
+      x -= rigid * (rigid.transpose() * x);
+      factor.solve(x.data(), out);
+      Eigen::Map<Eigen::VectorXd> y(out, k.rows());
+      y -= rigid * (rigid.transpose() * y);
+    }
+  };
+  const double shift = 1e-10 * k.diagonal().maxCoeff();
+  Operator op{k, rigid, NodeCholesky(k, shift)};
+  Spectra::SymEigsShiftSolver<Operator> eigs(op, 6, 30, -shift);
+  eigs.init();
+  eigs.compute(Spectra::SortRule::LargestMagn, 2000, 1e-10, Spectra::SortRule::SmallestAlge);
+  REQUIRE(eigs.info() == Spectra::CompInfo::Successful);
+  for (Eigen::Index i = 0; i < 6; ++i) {
+    const Eigen::VectorXd v = eigs.eigenvectors().col(i).normalized();
+    const double expected = v.dot(k * v);
+    INFO("eigenvalue " << i);
+    CHECK(std::abs(pairs.values(i) - expected) <= 1e-9 * expected);
+    CHECK(std::abs(pairs.vectors.col(i).dot(v)) >= 1.0 - 1e-9);
   }
 }
 

@@ -127,8 +127,8 @@ struct NodeCholesky::Factor {
                   static_cast<const int*>(factor->s),   static_cast<const double*>(factor->x)};
     const int* perm = static_cast<const int*>(factor->Perm);
     permutation.assign(perm, perm + a.rows());
-    permuted.resize(static_cast<std::size_t>(a.rows()));
-    work.resize(static_cast<std::size_t>(a.rows()));
+    permuted.resize(4 * static_cast<std::size_t>(a.rows()));
+    work.resize(4 * static_cast<std::size_t>(a.rows()));
   }
   ~Factor() {
     if (factor != nullptr) cholmod_free_factor(&factor, &common);
@@ -149,6 +149,19 @@ struct NodeCholesky::Factor {
     supernodal_solve(supernodal, permuted.data(), work.data());
     for (std::size_t k = 0; k < n; ++k) out[permutation[k]] = permuted[k];
   }
+
+  void solve4(const double* in, double* out) const {
+    const std::size_t n = permutation.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t row = static_cast<std::size_t>(permutation[k]);
+      for (std::size_t r = 0; r < 4; ++r) permuted[4 * k + r] = in[r * n + row];
+    }
+    supernodal_solve4(supernodal, permuted.data(), work.data());
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t row = static_cast<std::size_t>(permutation[k]);
+      for (std::size_t r = 0; r < 4; ++r) out[r * n + row] = permuted[4 * k + r];
+    }
+  }
 };
 #else
 struct NodeCholesky::Factor {
@@ -165,6 +178,10 @@ struct NodeCholesky::Factor {
     const Eigen::VectorXd x = ldlt.solve(Eigen::Map<const Eigen::VectorXd>(in, n));
     Eigen::Map<Eigen::VectorXd>(out, n) = x;
   }
+  void solve4(const double* in, double* out) const {
+    const Eigen::Index n = ldlt.rows();
+    for (Eigen::Index r = 0; r < 4; ++r) solve(in + r * n, out + r * n);
+  }
 };
 #endif
 
@@ -173,5 +190,6 @@ NodeCholesky::NodeCholesky(const Eigen::SparseMatrix<double>& a, double shift)
 NodeCholesky::~NodeCholesky() = default;
 
 void NodeCholesky::solve(const double* in, double* out) const { factor_->solve(in, out); }
+void NodeCholesky::solve4(const double* in, double* out) const { factor_->solve4(in, out); }
 
 }  // namespace phedra

@@ -28,6 +28,10 @@ class NodeCholesky {
   /// out = (a + shift I)^-1 in (in and out may be the same array). Not for concurrent calls
   /// on one object (its work arrays are its own).
   void solve(const double* in, double* out) const;
+  /// The same for four right-hand sides, each a column of `a.rows()` values
+  /// (column-major, in and out the same array or apart): about the cost of one
+  /// solve with CHOLMOD (supernodal_solve4).
+  void solve4(const double* in, double* out) const;
 
  private:
   struct Factor;

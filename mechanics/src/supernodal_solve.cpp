@@ -135,4 +135,104 @@ PHEDRA_CPU_CLONES void supernodal_solve(const SupernodalFactor& l, double* x, do
   }
 }
 
+namespace {
+
+/// y[i] -= sum over k < w of column k's entry i times x[k], for i < n: rows of four
+/// right-hand sides (y and x interleaved, Lane4 a row).
+[[gnu::always_inline]] inline void subtract_columns4(double* y, int n, const double* c, std::size_t ld, const double* x,
+                                                     int w) {
+  const Lane4 x0 = load4(x), x1 = w > 1 ? load4(x + 4) : Lane4{}, x2 = w > 2 ? load4(x + 8) : Lane4{},
+              x3 = w > 3 ? load4(x + 12) : Lane4{};
+  const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld;
+  if (w == 4) {
+    for (int i = 0; i < n; ++i) store4(y + 4 * i, load4(y + 4 * i) - (c0[i] * x0 + c1[i] * x1 + c2[i] * x2 + c3[i] * x3));
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    Lane4 sum = c0[i] * x0;
+    if (w > 1) sum += c1[i] * x1;
+    if (w > 2) sum += c2[i] * x2;
+    store4(y + 4 * i, load4(y + 4 * i) - sum);
+  }
+}
+
+/// r[k] += sum over i < n of column k's entry i times v[i] (rows of four), for k < w.
+[[gnu::always_inline]] inline void add_dots4(Lane4* r, int n, const double* c, std::size_t ld, const double* v, int w) {
+  const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld;
+  Lane4 s0 = {0.0, 0.0, 0.0, 0.0}, s1 = s0, s2 = s0, s3 = s0;
+  if (w == 4) {
+    for (int i = 0; i < n; ++i) {
+      const Lane4 t = load4(v + 4 * i);
+      s0 += c0[i] * t;
+      s1 += c1[i] * t;
+      s2 += c2[i] * t;
+      s3 += c3[i] * t;
+    }
+  } else {
+    for (int i = 0; i < n; ++i) {
+      const Lane4 t = load4(v + 4 * i);
+      s0 += c0[i] * t;
+      if (w > 1) s1 += c1[i] * t;
+      if (w > 2) s2 += c2[i] * t;
+    }
+  }
+  r[0] += s0;
+  r[1] += s1;
+  r[2] += s2;
+  r[3] += s3;
+}
+
+}  // namespace
+
+PHEDRA_CPU_CLONES void supernodal_solve4(const SupernodalFactor& l, double* x, double* work) {
+  // As supernodal_solve, a row being four values (one Lane4).
+  for (int s = 0; s < l.supernodes; ++s) {
+    const int first = l.super[s], columns = l.super[s + 1] - first;
+    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
+    const std::size_t ld = static_cast<std::size_t>(height);
+    const double* a = l.values + l.value_start[s];
+    double* xs = x + 4 * static_cast<std::size_t>(first);
+    for (int i = 0; i < 4 * below; ++i) work[i] = 0.0;
+    for (int jb = 0; jb < columns; jb += 4) {
+      const int w = columns - jb < 4 ? columns - jb : 4;
+      const double* block = a + static_cast<std::size_t>(jb) * ld;
+      for (int j = 0; j < w; ++j) {
+        const double* column = block + static_cast<std::size_t>(j) * ld;
+        const Lane4 xj = load4(xs + 4 * (jb + j)) / column[jb + j];
+        store4(xs + 4 * (jb + j), xj);
+        for (int i = j + 1; i < w; ++i) store4(xs + 4 * (jb + i), load4(xs + 4 * (jb + i)) - column[jb + i] * xj);
+      }
+      subtract_columns4(xs + 4 * (jb + w), columns - jb - w, block + jb + w, ld, xs + 4 * jb, w);
+      subtract_columns4(work, below, block + columns, ld, xs + 4 * jb, w);
+    }
+    const int* rows = l.rows + l.row_start[s] + columns;
+    for (int i = 0; i < below; ++i) {
+      double* target = x + 4 * static_cast<std::size_t>(rows[i]);
+      store4(target, load4(target) + load4(work + 4 * i));  // work holds minus the products
+    }
+  }
+  for (int s = l.supernodes - 1; s >= 0; --s) {
+    const int first = l.super[s], columns = l.super[s + 1] - first;
+    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
+    const std::size_t ld = static_cast<std::size_t>(height);
+    const double* a = l.values + l.value_start[s];
+    double* xs = x + 4 * static_cast<std::size_t>(first);
+    const int* rows = l.rows + l.row_start[s] + columns;
+    for (int i = 0; i < below; ++i) store4(work + 4 * i, load4(x + 4 * static_cast<std::size_t>(rows[i])));
+    for (int jb = (columns - 1) / 4 * 4; jb >= 0; jb -= 4) {
+      const int w = columns - jb < 4 ? columns - jb : 4;
+      const double* block = a + static_cast<std::size_t>(jb) * ld;
+      Lane4 r[4] = {};
+      add_dots4(r, below, block + columns, ld, work, w);
+      add_dots4(r, columns - jb - w, block + jb + w, ld, xs + 4 * (jb + w), w);
+      for (int j = w - 1; j >= 0; --j) {
+        const double* column = block + static_cast<std::size_t>(j) * ld;
+        Lane4 sum = r[j];
+        for (int i = j + 1; i < w; ++i) sum += column[jb + i] * load4(xs + 4 * (jb + i));
+        store4(xs + 4 * (jb + j), (load4(xs + 4 * (jb + j)) - sum) / column[jb + j]);
+      }
+    }
+  }
+}
+
 }  // namespace phedra

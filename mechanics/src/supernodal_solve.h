@@ -25,4 +25,10 @@ struct SupernodalFactor {
 /// x = (L L^T)^-1 x in L's (permuted) order; work holds as many doubles as L has rows.
 void supernodal_solve(const SupernodalFactor& l, double* x, double* work);
 
+/// The same for four right-hand sides at once, interleaved: x[4 i + r] is row i of
+/// the r-th. Each entry of L is read once a pass for all four (a solve of four
+/// costs about what one does: the passes are bound by reading L). work holds
+/// four doubles a row of L.
+void supernodal_solve4(const SupernodalFactor& l, double* x, double* work);
+
 }  // namespace phedra

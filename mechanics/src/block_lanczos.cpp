@@ -1,0 +1,62 @@
+#include "block_lanczos.h"
+
+#include <cmath>
+
+namespace phedra {
+
+std::optional<Eigen::MatrixXd> block_lanczos_largest(const ApplyFour& apply, const Eigen::MatrixXd& start,
+                                                     Eigen::Index nev, double tolerance, Eigen::Index max_basis) {
+  constexpr Eigen::Index b = 4;
+  const Eigen::Index n = start.rows();
+  if (start.cols() != b || max_basis < nev + b || max_basis + b > n) return std::nullopt;
+  Eigen::MatrixXd q(n, max_basis + b);  // the basis, a block of four after another
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(max_basis + b, max_basis + b);  // q^T A q
+  {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(start);
+    q.leftCols(b) = qr.householderQ() * Eigen::MatrixXd::Identity(n, b);
+  }
+  Eigen::MatrixXd w(n, b);
+  for (Eigen::Index m = 0;; m += b) {  // m: the first column of the newest block
+    const Eigen::Index size = m + b;
+    apply(q.middleCols(m, b), w);
+    const double scale = w.norm();
+    // Full reorthogonalization, twice (classical Gram-Schmidt, blocked): the
+    // coefficients are column block m of q^T A q.
+    Eigen::MatrixXd c = q.leftCols(size).transpose() * w;
+    w.noalias() -= q.leftCols(size) * c;
+    const Eigen::MatrixXd c2 = q.leftCols(size).transpose() * w;
+    w.noalias() -= q.leftCols(size) * c2;
+    c += c2;
+    h.block(0, m, size, b) = c;
+    h.block(m, 0, b, size) = c.transpose();
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(w);
+    const Eigen::MatrixXd r = qr.matrixQR().topRows(b).triangularView<Eigen::Upper>();
+    // Rayleigh-Ritz: A q_j lies in the span of q and the next block for every block,
+    // so A (q y) - theta (q y) = next (r y_newest): the residual is |r y_newest|.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ritz(
+        0.5 * (h.topLeftCorner(size, size) + h.topLeftCorner(size, size).transpose()));
+    if (ritz.info() != Eigen::Success) return std::nullopt;
+    if (size >= nev) {
+      bool converged = true;
+      for (Eigen::Index i = 0; i < nev && converged; ++i) {
+        const Eigen::Index col = size - 1 - i;  // ascending order: the largest last
+        const double theta = ritz.eigenvalues()(col);
+        converged = (r * ritz.eigenvectors().col(col).tail(b)).norm() <= tolerance * std::abs(theta);
+      }
+      if (converged) {
+        Eigen::MatrixXd vectors(n, nev);
+        for (Eigen::Index i = 0; i < nev; ++i) {
+          vectors.col(i) = q.leftCols(size) * ritz.eigenvectors().col(size - 1 - i);
+          vectors.col(i).normalize();
+        }
+        return vectors;
+      }
+    }
+    if (size + b > max_basis) return std::nullopt;
+    // A rank-deficient next block: the space is (nearly) invariant; not ours to repair.
+    if (r.diagonal().cwiseAbs().minCoeff() <= 1e-12 * scale) return std::nullopt;
+    q.middleCols(size, b) = qr.householderQ() * Eigen::MatrixXd::Identity(n, b);
+  }
+}
+
+}  // namespace phedra
