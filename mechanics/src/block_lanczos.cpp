@@ -1,8 +1,32 @@
 #include "block_lanczos.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phedra {
+namespace {
+
+/// c = q^T w, then w -= q c, over the first `size` columns of q (classical
+/// Gram-Schmidt of a block), 512 rows at a time: Eigen's GEMM over all the rows
+/// packs all of q for each product; by chunks the packed block stays in the
+/// caches (the 10^4-panel array's Lanczos: 0.059 s of orthogonalization, 0.09 s
+/// over all the rows).
+Eigen::MatrixXd orthogonalize(const Eigen::MatrixXd& q, Eigen::Index size, Eigen::MatrixXd& w) {
+  constexpr Eigen::Index chunk = 512;
+  const Eigen::Index n = w.rows(), b = w.cols();
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(size, b);
+  for (Eigen::Index i0 = 0; i0 < n; i0 += chunk) {
+    const Eigen::Index len = std::min(chunk, n - i0);
+    c.noalias() += q.block(i0, 0, len, size).transpose() * w.middleRows(i0, len);
+  }
+  for (Eigen::Index i0 = 0; i0 < n; i0 += chunk) {
+    const Eigen::Index len = std::min(chunk, n - i0);
+    w.middleRows(i0, len).noalias() -= q.block(i0, 0, len, size) * c;
+  }
+  return c;
+}
+
+}  // namespace
 
 std::optional<Eigen::MatrixXd> block_lanczos_largest(const ApplyFour& apply, const Eigen::MatrixXd& start,
                                                      Eigen::Index nev, double tolerance, Eigen::Index max_basis) {
@@ -22,11 +46,8 @@ std::optional<Eigen::MatrixXd> block_lanczos_largest(const ApplyFour& apply, con
     const double scale = w.norm();
     // Full reorthogonalization, twice (classical Gram-Schmidt, blocked): the
     // coefficients are column block m of q^T A q.
-    Eigen::MatrixXd c = q.leftCols(size).transpose() * w;
-    w.noalias() -= q.leftCols(size) * c;
-    const Eigen::MatrixXd c2 = q.leftCols(size).transpose() * w;
-    w.noalias() -= q.leftCols(size) * c2;
-    c += c2;
+    Eigen::MatrixXd c = orthogonalize(q, size, w);
+    c += orthogonalize(q, size, w);
     h.block(0, m, size, b) = c;
     h.block(m, 0, b, size) = c.transpose();
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(w);
