@@ -65,6 +65,13 @@ double merlin_angle(const HingeNodes& x) {
   return he < 0 ? he + 2 * pi : he;
 }
 
+/// A design's bar-and-hinge model at 0.4 of its flexion interval.
+BarHingeModel model_at_04(const Design& design, PanelModel panels) {
+  StiffnessOptions options;
+  options.panels = panels;
+  return BarHingeModel(design, design.assembly.evaluate(design.assembly.t_at_fraction(0.4)), options);
+}
+
 /// The energy landscape's options with the rest state at `fraction` of the
 /// flexion interval, n4b5 panels (every preset takes them).
 EnergyOptions rest_at(const Design& design, double fraction) {
@@ -448,9 +455,7 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
   // K of a design (positive semi-definite: six rigid motions), shifted as the modes shift it.
   const Design design = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
   for (PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
-    StiffnessOptions options;
-    options.panels = panels;
-    const BarHingeModel model(design, design.assembly.evaluate(design.assembly.t_at_fraction(0.4)), options);
+    const BarHingeModel model = model_at_04(design, panels);
     const Eigen::SparseMatrix<double> k = model.stiffness();
     check(k, 1e-6 * k.diagonal().maxCoeff());
     // Not positive definite: a clear internal error, nothing printed.
@@ -462,9 +467,7 @@ TEST_CASE("block Lanczos: the largest eigenpairs of (K + shift I)^-1 off the rig
           "[mechanics]") {
   const Design design = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
   for (PanelModel panels : {PanelModel::n4b5, PanelModel::n5b8}) {
-    StiffnessOptions options;
-    options.panels = panels;
-    const BarHingeModel model(design, design.assembly.evaluate(design.assembly.t_at_fraction(0.4)), options);
+    const BarHingeModel model = model_at_04(design, panels);
     const Eigen::SparseMatrix<double> k = model.stiffness();
     const Eigen::MatrixXd rigid = rigid_motion_basis(model.positions());
     const double shift = 1e-10 * k.diagonal().maxCoeff();

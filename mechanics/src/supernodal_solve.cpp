@@ -26,6 +26,21 @@ typedef double Lane4 __attribute__((vector_size(32)));
 [[gnu::always_inline]] inline void store4(double* p, Lane4 v) { std::memcpy(p, &v, sizeof v); }
 [[gnu::always_inline]] inline double sum4(Lane4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
+/// Supernode s of l: its first column, its column count, its rows below them,
+/// its values (column-major, leading dimension ld) and those rows' indices.
+struct Supernode {
+  int first, columns, below;
+  std::size_t ld;
+  const double* values;
+  const int* below_rows;
+};
+[[gnu::always_inline]] inline Supernode supernode(const SupernodalFactor& l, int s) {
+  const int first = l.super[s], columns = l.super[s + 1] - first;
+  const int height = l.row_start[s + 1] - l.row_start[s];
+  return {first, columns, height - columns, static_cast<std::size_t>(height), l.values + l.value_start[s],
+          l.rows + l.row_start[s] + columns};
+}
+
 /// y[0..n) -= sum over k < w of column k (entries c + k ld ..) times x[k]; w <= 4.
 [[gnu::always_inline]] inline void subtract_columns(double* y, int n, const double* c, std::size_t ld, const double* x,
                                                     int w) {
@@ -90,10 +105,7 @@ PHEDRA_CPU_CLONES void supernodal_solve(const SupernodalFactor& l, double* x, do
   // then the rows below it (the supernode's own, then its rectangle into work,
   // scattered to x at the end).
   for (int s = 0; s < l.supernodes; ++s) {
-    const int first = l.super[s], columns = l.super[s + 1] - first;
-    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
-    const std::size_t ld = static_cast<std::size_t>(height);
-    const double* a = l.values + l.value_start[s];
+    const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + first;
     for (int i = 0; i < below; ++i) work[i] = 0.0;
     for (int jb = 0; jb < columns; jb += 4) {
@@ -107,17 +119,12 @@ PHEDRA_CPU_CLONES void supernodal_solve(const SupernodalFactor& l, double* x, do
       subtract_columns(xs + jb + w, columns - jb - w, block + jb + w, ld, xs + jb, w);
       subtract_columns(work, below, block + columns, ld, xs + jb, w);
     }
-    const int* rows = l.rows + l.row_start[s] + columns;
     for (int i = 0; i < below; ++i) x[rows[i]] += work[i];  // work holds minus the products
   }
   // L^T x = y: the supernodes in reverse, each block of four columns from the last.
   for (int s = l.supernodes - 1; s >= 0; --s) {
-    const int first = l.super[s], columns = l.super[s + 1] - first;
-    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
-    const std::size_t ld = static_cast<std::size_t>(height);
-    const double* a = l.values + l.value_start[s];
+    const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + first;
-    const int* rows = l.rows + l.row_start[s] + columns;
     for (int i = 0; i < below; ++i) work[i] = x[rows[i]];
     for (int jb = (columns - 1) / 4 * 4; jb >= 0; jb -= 4) {
       const int w = columns - jb < 4 ? columns - jb : 4;
@@ -206,10 +213,7 @@ namespace {
 PHEDRA_CPU_CLONES void supernodal_solve4(const SupernodalFactor& l, double* x, double* work) {
   // As supernodal_solve, a row being four values (one Lane4).
   for (int s = 0; s < l.supernodes; ++s) {
-    const int first = l.super[s], columns = l.super[s + 1] - first;
-    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
-    const std::size_t ld = static_cast<std::size_t>(height);
-    const double* a = l.values + l.value_start[s];
+    const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + 4 * static_cast<std::size_t>(first);
     for (int i = 0; i < 4 * below; ++i) work[i] = 0.0;
     for (int jb = 0; jb < columns; jb += 4) {
@@ -224,19 +228,14 @@ PHEDRA_CPU_CLONES void supernodal_solve4(const SupernodalFactor& l, double* x, d
       subtract_columns4(xs + 4 * (jb + w), columns - jb - w, block + jb + w, ld, xs + 4 * jb, w);
       subtract_columns4(work, below, block + columns, ld, xs + 4 * jb, w);
     }
-    const int* rows = l.rows + l.row_start[s] + columns;
     for (int i = 0; i < below; ++i) {
       double* target = x + 4 * static_cast<std::size_t>(rows[i]);
       store4(target, load4(target) + load4(work + 4 * i));  // work holds minus the products
     }
   }
   for (int s = l.supernodes - 1; s >= 0; --s) {
-    const int first = l.super[s], columns = l.super[s + 1] - first;
-    const int height = l.row_start[s + 1] - l.row_start[s], below = height - columns;
-    const std::size_t ld = static_cast<std::size_t>(height);
-    const double* a = l.values + l.value_start[s];
+    const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + 4 * static_cast<std::size_t>(first);
-    const int* rows = l.rows + l.row_start[s] + columns;
     for (int i = 0; i < below; ++i) store4(work + 4 * i, load4(x + 4 * static_cast<std::size_t>(rows[i])));
     for (int jb = (columns - 1) / 4 * 4; jb >= 0; jb -= 4) {
       const int w = columns - jb < 4 ? columns - jb : 4;
