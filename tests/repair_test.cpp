@@ -263,8 +263,8 @@ TEST_CASE("repair: random unbuildable designs (open of every sign pattern, paral
           "only the varied fields change",
           "[repair]") {
   std::mt19937_64 rng(20261203);
-  const Tally t = repair_batch([&](int k) { return random_unbuildable(rng, k); },
-                               designs_a_batch());
+  [[maybe_unused]] const Tally t = repair_batch([&](int k) { return random_unbuildable(rng, k); },
+                                                designs_a_batch());  // checked outside the sanitizers' build
   // Measured (docs/design.md): 30 of the first 30 with the short budget, 190 of
   // 200 with the defaults; a regression shows well before these floors.
 #ifndef PHEDRA_SANITIZE_BUILD
@@ -276,7 +276,7 @@ TEST_CASE("repair --objective fields: fewer fields changed than the nearest desi
   // A design that cuts through itself at t* (the nearest design changes 15
   // fields with phedra repair's defaults) and the bench's helical design with a
   // height moved too far (a column of bow-ties: one field does it).
-  int fewer = 0;
+  [[maybe_unused]] int fewer = 0;  // checked outside the sanitizers' build
 #ifdef PHEDRA_SANITIZE_BUILD
   const std::vector<std::string> files{std::string()};  // the code paths (a sweep is about 10x slower there)
 #else
