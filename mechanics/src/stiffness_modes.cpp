@@ -134,10 +134,11 @@ Eigenpairs smallest_eigenpairs(const Eigen::SparseMatrix<double>& k, const Eigen
   // on the 10^4-panel array 12 solves of four (0.56 s against Spectra's 23 single
   // ones, 0.72 s), the eigenvalues within 4e-11 of a run to 1e-12. Below 10^4 rows
   // the solves are cheap and Spectra's smaller basis is faster (the bench's 100-panel
-  // tube: 0.24 s over 200 configurations against 0.30 s).
+  // tube: 0.24 s over 200 configurations against 0.30 s); beyond 16 eigenpairs its
+  // unrestarted basis (at most 128 vectors here) would outgrow Spectra's restarted one.
   std::optional<Eigen::MatrixXd> vectors;
-  const Eigen::Index max_basis = std::min<Eigen::Index>(std::max<Eigen::Index>(120, 8 * nev), (available - 8) / 4 * 4);
-  if (n >= 10000 && max_basis >= nev + 8) {
+  const Eigen::Index max_basis = std::min<Eigen::Index>(128, (available - 8) / 4 * 4);
+  if (n >= 10000 && nev <= 16 && max_basis >= nev + 8) {
     std::mt19937_64 rng(36);
     std::uniform_real_distribution<double> uniform(-1.0, 1.0);
     Eigen::MatrixXd start(n, 4);
