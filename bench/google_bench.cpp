@@ -153,7 +153,8 @@ void energy(benchmark::State& state) {
 /// The modes' parts on the same array (`phedra bench` mechanics.modes_array_s, n5b8):
 /// 0 the whole figure (the model, K, the largest eigenvalue, 6 eigenpairs, the
 /// alignment), 1 the Cholesky factor of K + delta I (ordering, analysis,
-/// factorization), 2 one solve with it, 3 one solve of four right-hand sides.
+/// factorization), 2 one solve with it, 3 one solve of four right-hand sides,
+/// 4 K's lower triangle (the assembly), 5 K's largest eigenvalue.
 void modes(benchmark::State& state) {
   const Design array = bench::mechanics_array(10, 45);
   const double t = array.assembly.t_star();
@@ -165,13 +166,17 @@ void modes(benchmark::State& state) {
   const BarHingeModel model(array, c, options);
   Points v;
   model.node_rates(rates, v);
-  const Eigen::SparseMatrix<double> k = model.stiffness();
+  const Eigen::SparseMatrix<double> k = model.stiffness_lower();  // analyze_modes's
   const double shift = 1e-10 * k.diagonal().maxCoeff();  // analyze_modes's
-  const std::unique_ptr<NodeCholesky> factor = state.range(0) >= 2 ? std::make_unique<NodeCholesky>(k, shift) : nullptr;
+  const std::unique_ptr<NodeCholesky> factor = state.range(0) == 2 || state.range(0) == 3 ? std::make_unique<NodeCholesky>(k, shift) : nullptr;
   Eigen::VectorXd x = Eigen::VectorXd::Ones(k.rows());
   Eigen::MatrixXd x4 = Eigen::MatrixXd::Ones(k.rows(), 4);
   for (auto _ : state) {
-    if (state.range(0) == 0) {
+    if (state.range(0) == 4) {
+      benchmark::DoNotOptimize(model.stiffness_lower().nonZeros());
+    } else if (state.range(0) == 5) {
+      benchmark::DoNotOptimize(largest_eigenvalue(k));
+    } else if (state.range(0) == 0) {
       const BarHingeModel m(array, c, options);
       benchmark::DoNotOptimize(analyze_modes(m, flatten(v), 6).eigenvalues.data());
     } else if (state.range(0) == 1) {
@@ -194,6 +199,6 @@ BENCHMARK(array_check)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iteration
 BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
-BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
 BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

@@ -302,6 +302,10 @@ std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
 double BarHingeModel::angle(std::size_t h, const Points& x) const { return hinge_angle(hinge_nodes(hinges_[h], x)); }
 
 Eigen::SparseMatrix<double> BarHingeModel::stiffness() const {
+  return stiffness_lower().selfadjointView<Eigen::Lower>();
+}
+
+Eigen::SparseMatrix<double> BarHingeModel::stiffness_lower() const {
   std::vector<std::span<const std::size_t>> elements;
   elements.reserve(bars_.size() + hinges_.size());
   for (const Bar& b : bars_) elements.emplace_back(b.nodes);
@@ -310,18 +314,21 @@ Eigen::SparseMatrix<double> BarHingeModel::stiffness() const {
   for (const Bar& b : bars_) {
     const Vec3 e = (positions_[b.nodes[1]] - positions_[b.nodes[0]]) / b.length;
     const Mat3 block = (b.stiffness / b.length) * (e * e.transpose());
-    for (int r = 0; r < 2; ++r) {
-      for (int c = 0; c < 2; ++c) k.add(b.nodes[r], b.nodes[c], r == c ? block : Mat3(-block));
-    }
+    const auto [low, high] = std::minmax(b.nodes[0], b.nodes[1]);
+    k.add(b.nodes[0], b.nodes[0], block);
+    k.add(b.nodes[1], b.nodes[1], block);
+    k.add(high, low, -block);
   }
   for (const Hinge& h : hinges_) {
     const std::array<Vec3, 4> g = hinge_angle_gradient(hinge_nodes(h, positions_));
     const double stiffness = h.stiffness * h.length;
     for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) k.add(h.nodes[r], h.nodes[c], stiffness * (g[r] * g[c].transpose()));
+      for (int c = 0; c < 4; ++c) {
+        if (h.nodes[r] >= h.nodes[c]) k.add(h.nodes[r], h.nodes[c], stiffness * (g[r] * g[c].transpose()));
+      }
     }
   }
-  return k.matrix();
+  return k.lower();
 }
 
 }  // namespace phedra

@@ -1,9 +1,11 @@
 #pragma once
-// A symmetric sparse matrix of 3 x 3 node blocks (the stiffness K), assembled in
-// place: the pattern from the elements' nodes first (each node's neighbours,
-// sorted), then every block added where it belongs. Eigen's setFromTriplets
-// took 5-9 % of the modes' time on a 10^4-panel array (9.5e6 triplets,
-// 150 MB of them, sorted and summed); this writes each entry once.
+// The lower triangle of a symmetric sparse matrix of 3 x 3 node blocks (the
+// stiffness K), assembled in place: the pattern from the elements' nodes first
+// (each node's neighbours from itself on, sorted), then every block on or below
+// the diagonal added where it belongs. Eigen's setFromTriplets took 5-9 % of the
+// modes' time on a 10^4-panel array (9.5e6 triplets, 150 MB of them, sorted and
+// summed); this writes each entry once, and only the triangle the solvers read
+// (half the memory and the additions of the whole matrix).
 #include "phedra/vector_types.h"
 
 #include <Eigen/SparseCore>
@@ -19,11 +21,12 @@ class BlockAssembly {
   /// `nodes` nodes; the elements, each its nodes (every pair of them a block).
   BlockAssembly(std::size_t nodes, const std::vector<std::span<const std::size_t>>& elements);
 
-  /// Adds `block` at rows of node r, columns of node c (both of one element given).
+  /// Adds `block` at rows of node r, columns of node c (both of one element
+  /// given, r >= c: the block of r < c is this one's transpose, added with (c, r)).
   void add(std::size_t r, std::size_t c, const Mat3& block);
 
-  /// The matrix, 3 nodes square, compressed column-major.
-  Eigen::SparseMatrix<double> matrix() const;
+  /// The lower triangle (diagonal included), 3 nodes square, compressed column-major.
+  Eigen::SparseMatrix<double> lower() const;
 
  private:
   std::size_t slot(std::size_t r, std::size_t c) const;

@@ -56,7 +56,7 @@ std::vector<int> node_ordering(const Eigen::SparseMatrix<double>& a, cholmod_com
     for (int r = 0; r < 3; ++r) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(a, 3 * node + r); it; ++it) {
         const int other = static_cast<int>(it.row() / 3);
-        if (other != node) neighbours.push_back(other);
+        if (other > node) neighbours.push_back(other);  // the lower triangle (a's upper one, if stored, is not read)
       }
     }
     std::sort(neighbours.begin() + static_cast<std::ptrdiff_t>(from), neighbours.end());
@@ -70,7 +70,7 @@ std::vector<int> node_ordering(const Eigen::SparseMatrix<double>& a, cholmod_com
   graph.nzmax = neighbours.size();
   graph.p = start.data();
   graph.i = neighbours.data();
-  graph.stype = 1;  // symmetric (both halves are stored; the upper one is read)
+  graph.stype = -1;  // symmetric, its lower triangle stored
   graph.itype = CHOLMOD_INT;
   graph.xtype = CHOLMOD_PATTERN;
   graph.dtype = CHOLMOD_DOUBLE;

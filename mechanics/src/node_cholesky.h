@@ -17,8 +17,8 @@ namespace phedra {
 
 class NodeCholesky {
  public:
-  /// Factorizes a + shift I (symmetric positive definite; a with both triangles
-  /// and its whole diagonal stored, its rows in node triples). Throws
+  /// Factorizes a + shift I (symmetric positive definite; only a's lower
+  /// triangle is read, its whole diagonal stored, its rows in node triples). Throws
   /// Error(internal) when it is not positive definite or memory runs out.
   explicit NodeCholesky(const Eigen::SparseMatrix<double>& a, double shift = 0.0);
   ~NodeCholesky();
