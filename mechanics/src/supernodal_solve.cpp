@@ -210,7 +210,7 @@ namespace {
 
 }  // namespace
 
-PHEDRA_CPU_CLONES void supernodal_solve4(const SupernodalFactor& l, double* x, double* work) {
+PHEDRA_CPU_CLONES_V4 void supernodal_solve4(const SupernodalFactor& l, double* x, double* work) {
   // As supernodal_solve, a row being four values (one Lane4).
   for (int s = 0; s < l.supernodes; ++s) {
     const auto [first, columns, below, ld, a, rows] = supernode(l, s);

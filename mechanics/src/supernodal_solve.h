@@ -5,7 +5,9 @@
 // 10^4-panel array's factor (2,348 supernodes, 306 MB) 31-33 ms a solve. These
 // loops read each entry of the factor once a pass, four columns at a time
 // (register-blocked), compiled for AVX2 and the baseline (PHEDRA_CPU_CLONES):
-// 27-29 ms, near this machine's streaming bandwidth (docs/performance.md).
+// 27-29 ms, near this machine's streaming bandwidth (docs/performance.md). The
+// solve of four has an AVX-512 clone too (the same 256-bit arithmetic with 32
+// registers and broadcast operands): 35.5-43.7 ms against 40.2-48.7 (AVX2).
 
 namespace phedra {
 

@@ -10,6 +10,10 @@
 #if defined(__x86_64__) && !defined(__EMSCRIPTEN__) && \
     ((defined(__clang__) && __clang_major__ >= 18) || (!defined(__clang__) && defined(__GNUC__) && __GNUC__ >= 12))
 #define PHEDRA_CPU_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+// The same with an x86-64-v4 (AVX-512) clone first: for loops whose 256-bit
+// arithmetic gains from its 32 vector registers and broadcasting operands.
+#define PHEDRA_CPU_CLONES_V4 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define PHEDRA_CPU_CLONES
+#define PHEDRA_CPU_CLONES_V4
 #endif
