@@ -378,7 +378,7 @@ TEST_CASE("the energy's samples evaluated four together equal each evaluated alo
   CHECK(lanes_checked > 40);
 }
 
-TEST_CASE("the stiffness's block assembly equals the lower triangle of a dense sum of the same blocks, repeated nodes and empty columns too",
+TEST_CASE("the stiffness's block assembly equals the upper triangle of a dense sum of the same blocks, repeated nodes and empty columns too",
           "[mechanics]") {
   std::mt19937_64 rng(3606);
   for (int round = 0; round < 20; ++round) {
@@ -394,20 +394,20 @@ TEST_CASE("the stiffness's block assembly equals the lower triangle of a dense s
     for (const auto& e : elements) {
       for (std::size_t r : e) {
         for (std::size_t c : e) {
-          if (r < c) continue;  // the lower triangle's blocks only
+          if (r > c) continue;  // the upper triangle's blocks only
           const Mat3 block = Mat3::Random();
           k.add(r, c, block);
           dense.block<3, 3>(3 * static_cast<Eigen::Index>(r), 3 * static_cast<Eigen::Index>(c)) += block;
         }
       }
     }
-    const Eigen::SparseMatrix<double> sparse = k.lower();
+    const Eigen::SparseMatrix<double> sparse = k.upper();
     REQUIRE(sparse.isCompressed());
-    const Eigen::MatrixXd expected = dense.triangularView<Eigen::Lower>();
+    const Eigen::MatrixXd expected = dense.triangularView<Eigen::Upper>();
     CHECK((Eigen::MatrixXd(sparse) - expected).cwiseAbs().maxCoeff() <= 1e-12);
-    // Nothing above the diagonal is stored.
+    // Nothing below the diagonal is stored.
     for (Eigen::Index c = 0; c < sparse.outerSize(); ++c) {
-      for (Eigen::SparseMatrix<double>::InnerIterator it(sparse, c); it; ++it) CHECK(it.row() >= c);
+      for (Eigen::SparseMatrix<double>::InnerIterator it(sparse, c); it; ++it) CHECK(it.row() <= c);
     }
   }
 }
@@ -416,8 +416,8 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
           "[mechanics]") {
   std::mt19937_64 rng(3607);
   const auto check = [](const Eigen::SparseMatrix<double>& a, double shift) {
-    const NodeCholesky factor(a, shift);  // a's lower triangle read (a whole or only that triangle)
-    const Eigen::SparseMatrix<double> symmetric = a.selfadjointView<Eigen::Lower>();
+    const NodeCholesky factor(a, shift);  // a's upper triangle read (a whole or only that triangle)
+    const Eigen::SparseMatrix<double> symmetric = a.selfadjointView<Eigen::Upper>();
     const Eigen::MatrixXd dense = Eigen::MatrixXd(symmetric) + shift * Eigen::MatrixXd::Identity(a.rows(), a.cols());
     const Eigen::LLT<Eigen::MatrixXd> llt(dense);
     REQUIRE(llt.info() == Eigen::Success);
@@ -453,11 +453,11 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
     for (const auto& e : elements) {
       for (std::size_t r : e) {
         for (std::size_t c : e) {
-          if (r >= c) assembly.add(r, c, r == c ? Mat3(Mat3::Identity() * 60.0) : Mat3(Mat3::Constant(0.5)));
+          if (r <= c) assembly.add(r, c, r == c ? Mat3(Mat3::Identity() * 60.0) : Mat3(Mat3::Constant(0.5)));
         }
       }
     }
-    check(assembly.lower(), test::uniform(rng, 0.0, 1.0));
+    check(assembly.upper(), test::uniform(rng, 0.0, 1.0));
   }
   // K of a design (positive semi-definite: six rigid motions), shifted as the modes shift it.
   const Design design = load_design(std::filesystem::path(test::presets) / "grid-3x3.json");
@@ -465,10 +465,10 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
     const BarHingeModel model = model_at_04(design, panels);
     const Eigen::SparseMatrix<double> k = model.stiffness();
     check(k, 1e-6 * k.diagonal().maxCoeff());
-    const Eigen::SparseMatrix<double> lower = model.stiffness_lower();
+    const Eigen::SparseMatrix<double> upper = model.stiffness_upper();
     CHECK(Eigen::SparseMatrix<double>(k - Eigen::SparseMatrix<double>(k.transpose())).norm() == 0.0);
-    CHECK(Eigen::SparseMatrix<double>(Eigen::SparseMatrix<double>(k.triangularView<Eigen::Lower>()) - lower).norm() == 0.0);
-    check(lower, 1e-6 * k.diagonal().maxCoeff());
+    CHECK(Eigen::SparseMatrix<double>(Eigen::SparseMatrix<double>(k.triangularView<Eigen::Upper>()) - upper).norm() == 0.0);
+    check(upper, 1e-6 * k.diagonal().maxCoeff());
     // Not positive definite: a clear internal error, nothing printed.
     CHECK_THROWS_AS(NodeCholesky(k, -1.0), Error);
   }
@@ -525,7 +525,7 @@ TEST_CASE("the modes of a 10^4-row model (block Lanczos) equal Spectra's single-
   const Eigen::SparseMatrix<double> k = model.stiffness();
   REQUIRE(k.rows() >= 10000);
   const Eigen::MatrixXd rigid = rigid_motion_basis(model.positions());
-  const Eigenpairs pairs = smallest_eigenpairs(model.stiffness_lower(), rigid, 6);  // as analyze_modes calls it
+  const Eigenpairs pairs = smallest_eigenpairs(model.stiffness_upper(), rigid, 6);  // as analyze_modes calls it
   // Spectra on an operator of the test's own (the whole K): P (K + shift I)^-1 P with the same factor type.
   struct Operator {
     using Scalar = double;

@@ -302,10 +302,10 @@ std::vector<std::array<std::uint32_t, 3>> BarHingeModel::triangles() const {
 double BarHingeModel::angle(std::size_t h, const Points& x) const { return hinge_angle(hinge_nodes(hinges_[h], x)); }
 
 Eigen::SparseMatrix<double> BarHingeModel::stiffness() const {
-  return stiffness_lower().selfadjointView<Eigen::Lower>();
+  return stiffness_upper().selfadjointView<Eigen::Upper>();
 }
 
-Eigen::SparseMatrix<double> BarHingeModel::stiffness_lower() const {
+Eigen::SparseMatrix<double> BarHingeModel::stiffness_upper() const {
   std::vector<std::span<const std::size_t>> elements;
   elements.reserve(bars_.size() + hinges_.size());
   for (const Bar& b : bars_) elements.emplace_back(b.nodes);
@@ -317,18 +317,18 @@ Eigen::SparseMatrix<double> BarHingeModel::stiffness_lower() const {
     const auto [low, high] = std::minmax(b.nodes[0], b.nodes[1]);
     k.add(b.nodes[0], b.nodes[0], block);
     k.add(b.nodes[1], b.nodes[1], block);
-    k.add(high, low, -block);
+    k.add(low, high, -block);
   }
   for (const Hinge& h : hinges_) {
     const std::array<Vec3, 4> g = hinge_angle_gradient(hinge_nodes(h, positions_));
     const double stiffness = h.stiffness * h.length;
     for (int r = 0; r < 4; ++r) {
       for (int c = 0; c < 4; ++c) {
-        if (h.nodes[r] >= h.nodes[c]) k.add(h.nodes[r], h.nodes[c], stiffness * (g[r] * g[c].transpose()));
+        if (h.nodes[r] <= h.nodes[c]) k.add(h.nodes[r], h.nodes[c], stiffness * (g[r] * g[c].transpose()));
       }
     }
   }
-  return k.lower();
+  return k.upper();
 }
 
 }  // namespace phedra

@@ -13,7 +13,7 @@ BlockAssembly::BlockAssembly(std::size_t nodes, const std::vector<std::span<cons
   for (const auto& e : elements) {
     for (std::size_t c : e) {
       for (std::size_t r : e) {
-        if (r >= c) neighbours[c].push_back(r);
+        if (r <= c) neighbours[c].push_back(r);
       }
     }
   }
@@ -43,12 +43,12 @@ void BlockAssembly::add(std::size_t r, std::size_t c, const Mat3& block) {
     for (int i = 0; i < 3; ++i) v[3 * j + i] += block(i, j);
 }
 
-Eigen::SparseMatrix<double> BlockAssembly::lower() const {
+Eigen::SparseMatrix<double> BlockAssembly::upper() const {
   const std::size_t nodes = start_.size() - 1;
   const Eigen::Index n = static_cast<Eigen::Index>(3 * nodes);
   std::size_t entries = values_.size();  // 9 a block, 6 a diagonal one
   for (std::size_t c = 0; c < nodes; ++c) {
-    if (start_[c] < start_[c + 1] && rows_[start_[c]] == c) entries -= 3;
+    if (start_[c] < start_[c + 1] && rows_[start_[c + 1] - 1] == c) entries -= 3;
   }
   if (entries > static_cast<std::size_t>(std::numeric_limits<int>::max())) {
     throw Error(ExitCode::internal, "stiffness: " + std::to_string(entries) +
@@ -64,7 +64,7 @@ Eigen::SparseMatrix<double> BlockAssembly::lower() const {
     for (int j = 0; j < 3; ++j) {
       outer[3 * c + static_cast<std::size_t>(j)] = static_cast<int>(at);
       for (std::size_t b = start_[c]; b < start_[c + 1]; ++b) {
-        for (int i = rows_[b] == c ? j : 0; i < 3; ++i) {  // the diagonal block's lower triangle
+        for (int i = 0; i < (rows_[b] == c ? j + 1 : 3); ++i) {  // the diagonal block's upper triangle
           inner[at] = static_cast<int>(3 * rows_[b] + static_cast<std::size_t>(i));
           value[at] = values_[9 * b + 3 * static_cast<std::size_t>(j) + static_cast<std::size_t>(i)];
           ++at;

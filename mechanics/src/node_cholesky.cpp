@@ -21,8 +21,9 @@ namespace phedra {
 #ifdef PHEDRA_CHOLMOD
 namespace {
 
-/// CHOLMOD's view of an Eigen matrix (compressed, sorted, int indices); stype -1:
-/// the lower triangle is read, the upper ignored.
+/// CHOLMOD's view of an Eigen matrix (compressed, sorted, int indices); stype 1:
+/// the upper triangle is read, the lower ignored (CHOLMOD permutes an upper
+/// triangle with one transpose, a lower one with two: cholmod_factorize.c).
 cholmod_sparse view(const Eigen::SparseMatrix<double>& a) {
   cholmod_sparse v;
   std::memset(&v, 0, sizeof v);
@@ -32,7 +33,7 @@ cholmod_sparse view(const Eigen::SparseMatrix<double>& a) {
   v.p = const_cast<int*>(a.outerIndexPtr());
   v.i = const_cast<int*>(a.innerIndexPtr());
   v.x = const_cast<double*>(a.valuePtr());
-  v.stype = -1;
+  v.stype = 1;
   v.itype = CHOLMOD_INT;
   v.xtype = CHOLMOD_REAL;
   v.dtype = CHOLMOD_DOUBLE;
@@ -56,7 +57,7 @@ std::vector<int> node_ordering(const Eigen::SparseMatrix<double>& a, cholmod_com
     for (int r = 0; r < 3; ++r) {
       for (Eigen::SparseMatrix<double>::InnerIterator it(a, 3 * node + r); it; ++it) {
         const int other = static_cast<int>(it.row() / 3);
-        if (other > node) neighbours.push_back(other);  // the lower triangle (a's upper one, if stored, is not read)
+        if (other < node) neighbours.push_back(other);  // the upper triangle (a's lower one, if stored, is not read)
       }
     }
     std::sort(neighbours.begin() + static_cast<std::ptrdiff_t>(from), neighbours.end());
@@ -70,7 +71,7 @@ std::vector<int> node_ordering(const Eigen::SparseMatrix<double>& a, cholmod_com
   graph.nzmax = neighbours.size();
   graph.p = start.data();
   graph.i = neighbours.data();
-  graph.stype = -1;  // symmetric, its lower triangle stored
+  graph.stype = 1;  // symmetric, its upper triangle stored
   graph.itype = CHOLMOD_INT;
   graph.xtype = CHOLMOD_PATTERN;
   graph.dtype = CHOLMOD_DOUBLE;
@@ -165,7 +166,7 @@ struct NodeCholesky::Factor {
 };
 #else
 struct NodeCholesky::Factor {
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::AMDOrdering<int>> ldlt;
   Factor(const Eigen::SparseMatrix<double>& a, double shift) {
     ldlt.setShift(shift);
     ldlt.compute(a);

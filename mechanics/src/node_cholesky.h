@@ -17,7 +17,7 @@ namespace phedra {
 
 class NodeCholesky {
  public:
-  /// Factorizes a + shift I (symmetric positive definite; only a's lower
+  /// Factorizes a + shift I (symmetric positive definite; only a's upper
   /// triangle is read, its whole diagonal stored, its rows in node triples). Throws
   /// Error(internal) when it is not positive definite or memory runs out.
   explicit NodeCholesky(const Eigen::SparseMatrix<double>& a, double shift = 0.0);

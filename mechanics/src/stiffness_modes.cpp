@@ -78,7 +78,7 @@ Eigen::MatrixXd complement(const Eigen::MatrixXd& d, Eigen::Index n) {
 
 Eigenpairs dense_smallest(const Eigen::SparseMatrix<double>& k, const Eigen::MatrixXd& deflated, std::size_t count) {
   const Eigen::MatrixXd q = complement(deflated, k.rows());
-  const Eigen::MatrixXd reduced = q.transpose() * (k.selfadjointView<Eigen::Lower>() * q);
+  const Eigen::MatrixXd reduced = q.transpose() * (k.selfadjointView<Eigen::Upper>() * q);
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (reduced + reduced.transpose()));
   if (eig.info() != Eigen::Success) throw Error(ExitCode::internal, "stiffness: the dense eigen-solver failed");
   const Eigen::Index c = static_cast<Eigen::Index>(count);
@@ -164,7 +164,7 @@ Eigenpairs smallest_eigenpairs(const Eigen::SparseMatrix<double>& k, const Eigen
   std::vector<Eigen::Index> order(static_cast<std::size_t>(nev));
   for (Eigen::Index i = 0; i < nev; ++i) {
     out.vectors.col(i).normalize();
-    out.values(i) = out.vectors.col(i).dot(k.selfadjointView<Eigen::Lower>() * out.vectors.col(i));
+    out.values(i) = out.vectors.col(i).dot(k.selfadjointView<Eigen::Upper>() * out.vectors.col(i));
     order[static_cast<std::size_t>(i)] = i;
   }
   std::sort(order.begin(), order.end(), [&](Eigen::Index a, Eigen::Index b) { return out.values(a) < out.values(b); });
@@ -179,13 +179,13 @@ Eigenpairs smallest_eigenpairs(const Eigen::SparseMatrix<double>& k, const Eigen
 double largest_eigenvalue(const Eigen::SparseMatrix<double>& k) {
   const Eigen::Index n = k.rows();
   if (n <= 150) {
-    // Its lower triangle read (as the dense matrix's is).
-    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(k), Eigen::EigenvaluesOnly);
+    // The dense solver reads a lower triangle: K's upper one transposed.
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(Eigen::MatrixXd(k.transpose()), Eigen::EigenvaluesOnly);
     return eig.eigenvalues()(n - 1);
   }
-  Spectra::SparseSymMatProd<double, Eigen::Lower> op(k);  // the lower triangle read: half the memory
+  Spectra::SparseSymMatProd<double, Eigen::Upper> op(k);  // the upper triangle read: half the memory
   // 12 vectors: 25 products on the 10^4-panel array (31 with 30), the same value to 1e-15.
-  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double, Eigen::Lower>> eigs(op, 1, std::min<Eigen::Index>(n, 12));
+  Spectra::SymEigsSolver<Spectra::SparseSymMatProd<double, Eigen::Upper>> eigs(op, 1, std::min<Eigen::Index>(n, 12));
   eigs.init();
   eigs.compute(Spectra::SortRule::LargestAlge, 2000, 1e-10);
   if (eigs.info() != Spectra::CompInfo::Successful) {
@@ -211,7 +211,7 @@ ModeAnalysis analyze_modes(const BarHingeModel& model, const std::optional<Eigen
   a.bars = model.bars().size();
   a.folds = model.fold_count();
   a.bends = model.bend_count();
-  const Eigen::SparseMatrix<double> k = model.stiffness_lower();
+  const Eigen::SparseMatrix<double> k = model.stiffness_upper();
   const Eigen::MatrixXd rigid = rigid_motion_basis(model.positions());
   a.largest_eigenvalue = largest_eigenvalue(k);
   const double threshold = rigid_body_threshold * a.largest_eigenvalue;
@@ -243,7 +243,7 @@ ModeAnalysis analyze_modes(const BarHingeModel& model, const std::optional<Eigen
       const Eigen::VectorXd unit = a.velocity / norm;
       const Eigen::VectorXd first_mode = without_rigid_motions(a.modes.col(0), rigid);
       a.motion_alignment = std::abs(first_mode.dot(unit)) / first_mode.norm();
-      a.motion_stiffness = unit.dot(k.selfadjointView<Eigen::Lower>() * unit);
+      a.motion_stiffness = unit.dot(k.selfadjointView<Eigen::Upper>() * unit);
       double share = 0.0;
       for (Eigen::Index c = 0; c < count; ++c) {
         const double p = a.modes.col(c).dot(unit);

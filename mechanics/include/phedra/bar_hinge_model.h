@@ -116,9 +116,9 @@ class BarHingeModel {
   /// The tangent stiffness at rest (no bar force, no moment): sum over bars of
   /// (EA / L) b b^T and over hinges of k L grad(theta) grad(theta)^T, 3 x nodes square.
   Eigen::SparseMatrix<double> stiffness() const;
-  /// Its lower triangle (diagonal included): what the eigen-solvers read
+  /// Its upper triangle (diagonal included): what the eigen-solvers read
   /// (stiffness_modes.h), half the memory and the assembly of the whole.
-  Eigen::SparseMatrix<double> stiffness_lower() const;
+  Eigen::SparseMatrix<double> stiffness_upper() const;
 
  private:
   /// InvalidInputError (--bar, or --thickness with a material) when the

@@ -37,12 +37,12 @@ struct Eigenpairs {
 /// The `count` smallest eigenpairs of the symmetric positive semidefinite K in
 /// the complement of the columns of `deflated` (orthonormal, K deflated = 0):
 /// dense for small matrices, else Spectra's shift-invert with a sparse Cholesky
-/// factor of K + delta I. Only K's lower triangle (diagonal included) is read:
-/// the whole matrix or BarHingeModel::stiffness_lower() alike. Throws
+/// factor of K + delta I. Only K's upper triangle (diagonal included) is read:
+/// the whole matrix or BarHingeModel::stiffness_upper() alike. Throws
 /// Error(internal) when the solver does not converge.
 Eigenpairs smallest_eigenpairs(const Eigen::SparseMatrix<double>& k, const Eigen::MatrixXd& deflated, std::size_t count);
 
-/// The largest eigenvalue of K (Lanczos, to 1e-10 relative); its lower triangle read.
+/// The largest eigenvalue of K (Lanczos, to 1e-10 relative); its upper triangle read.
 double largest_eigenvalue(const Eigen::SparseMatrix<double>& k);
 
 /// The relative size under which an eigenvalue is a rigid-body mode's.
