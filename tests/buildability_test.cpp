@@ -284,7 +284,11 @@ TEST_CASE("arrays: distinct panels against a brute-force count of coincident mem
     CHECK(mesh.faces.size() == places.size());
     CHECK(mesh.shared_walls == member_faces - places.size());
     CHECK(invalid_panels(*d).size() == invalid_places);
-    const BuildabilityReport r = assess_buildability(*d, nullptr, {{}, {false, 0, {}}, false});
+    BuildabilityOptions options;  // panel shapes only: no hints, no sweep of the motion
+    options.diagnosis.hints = false;
+    options.diagnosis.max_hinted_panels = 0;
+    options.sweep_motion = false;  // an aggregate initializer had set bounds.max_growth instead (clang's -Wmissing-braces)
+    const BuildabilityReport r = assess_buildability(*d, nullptr, options);
     CHECK(r.panels == places.size());
     CHECK(r.invalid.size() == invalid_places);
     // Merging removes both copies of every shared wall.

@@ -17,7 +17,6 @@
 
 namespace phedra {
 
-using json = nlohmann::json;
 using namespace repair_search;
 
 FigureTarget FigureTarget::parse(const std::string& text) {
@@ -238,7 +237,7 @@ namespace {
 /// point so far, perturbed restarts when they stall, every end point verified.
 class TargetRun {
  public:
-  TargetRun(const json& preset, const OptimizeOptions& options, const DesignVariables& variables,
+  TargetRun(const nlohmann::json& preset, const OptimizeOptions& options, const DesignVariables& variables,
             const RepairOptions& repair_options, std::size_t panels, double size)
       : options_(options),
         variables_(variables),
@@ -322,7 +321,7 @@ class TargetRun {
 
 }  // namespace
 
-OptimizeResult optimize(const json& preset, const OptimizeOptions& given) {
+OptimizeResult optimize(const nlohmann::json& preset, const OptimizeOptions& given) {
   const Clock::time_point start = Clock::now();
   OptimizeOptions options = given;
   if (options.targets.empty() && !options.fit) {
@@ -466,8 +465,8 @@ OptimizeResult optimize(const json& preset, const OptimizeOptions& given) {
   return r;
 }
 
-json named_optimized(const json& result, const std::string& input_name, const std::string& vary, const OptimizeResult& r) {
-  json out = result;
+nlohmann::json named_optimized(const nlohmann::json& result, const std::string& input_name, const std::string& vary, const OptimizeResult& r) {
+  nlohmann::json out = result;
   std::string targets;
   for (const TargetOutcome& o : r.targets) targets += (targets.empty() ? "" : ", ") + o.target;
   out["name"] = input_name + (r.reached ? "-optimized" : "-closest");
