@@ -26,7 +26,8 @@ void add_bench_command(CLI::App& app, Context& context) {
   CLI::App* sub = app.add_subcommand(
       "bench",
       "Measure the performance figures (docs/performance.md) on generated cases, each next to its target and the "
-      "memory-bandwidth reference; one core, about a minute. Exit code 1 when a target is missed");
+      "memory-bandwidth reference; one core (the energy landscape and large collision sweeps on two threads, as the "
+      "commands run them), about a minute. Exit code 1 when a target is missed");
   sub->add_flag("--json", options->json, "Print the figures as JSON");
   sub->add_flag("--quick", options->bench.quick,
                 "Small cases only (a few seconds; the figures are not comparable with the targets, which are "

@@ -77,7 +77,7 @@ std::string machine_name() {
       break;
     }
   }
-  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads (benchmarks use one)";
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " hardware threads (benchmarks use one; the energy landscape and large collision sweeps two, as the commands do)";
 }
 
 /// /proc/self/status field in KiB (-1 when absent).
