@@ -6,6 +6,7 @@
 #include "phedra/errors.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -61,6 +62,12 @@ namespace {
 typedef double Four __attribute__((vector_size(4 * sizeof(double))));
 template <std::size_t L>
 using Lane = std::conditional_t<L == 1, double, Four>;
+/// Four folds' whole turns: as whole numbers, and as the bytes kept (converted
+/// four at a time, not one by one).
+typedef std::int32_t Whole4 __attribute__((vector_size(4 * sizeof(std::int32_t))));
+typedef std::int8_t Turns4 __attribute__((vector_size(4 * sizeof(std::int8_t))));
+typedef std::int8_t Bytes16 __attribute__((vector_size(16)));
+static_assert(std::endian::native == std::endian::little, "a whole number's low byte first");
 static_assert(FoldKernel::lanes == 4);
 
 /// A point's (or vector's) three coordinates, each its L lanes.
@@ -82,13 +89,26 @@ template <std::size_t L>
   std::memcpy(p + 2 * L, &v.z, sizeof v.z);
 }
 
-/// Lane l of `v` to out[l * stride].
-template <std::size_t L>
-[[gnu::always_inline]] inline void scatter(const Lane<L>& v, double* out, std::size_t stride) {
-  if constexpr (L == 1) {
-    *out = v;
-  } else {
-    for (std::size_t l = 0; l < L; ++l) out[l * stride] = v[l];
+/// A block's numbers made a fold's four lanes side by side ([fold][lane]) to lane
+/// l's fold i at out[l * stride + i]: four folds at a time, a 4 x 4 transpose in registers.
+[[gnu::always_inline]] inline void transpose_lanes(const double* in, std::size_t count, double* out,
+                                                   std::size_t stride) {
+  std::size_t i = 0;
+  for (; i + 4 <= count; i += 4) {
+    Four t0, t1, t2, t3;  // folds i .. i + 3, each its four lanes
+    std::memcpy(&t0, in + 4 * i, sizeof t0), std::memcpy(&t1, in + 4 * i + 4, sizeof t1);
+    std::memcpy(&t2, in + 4 * i + 8, sizeof t2), std::memcpy(&t3, in + 4 * i + 12, sizeof t3);
+    const Four even01 = __builtin_shufflevector(t0, t1, 0, 4, 2, 6), odd01 = __builtin_shufflevector(t0, t1, 1, 5, 3, 7);
+    const Four even23 = __builtin_shufflevector(t2, t3, 0, 4, 2, 6), odd23 = __builtin_shufflevector(t2, t3, 1, 5, 3, 7);
+    const Four lane0 = __builtin_shufflevector(even01, even23, 0, 1, 4, 5);
+    const Four lane1 = __builtin_shufflevector(odd01, odd23, 0, 1, 4, 5);
+    const Four lane2 = __builtin_shufflevector(even01, even23, 2, 3, 6, 7);
+    const Four lane3 = __builtin_shufflevector(odd01, odd23, 2, 3, 6, 7);
+    std::memcpy(out + i, &lane0, sizeof lane0), std::memcpy(out + stride + i, &lane1, sizeof lane1);
+    std::memcpy(out + 2 * stride + i, &lane2, sizeof lane2), std::memcpy(out + 3 * stride + i, &lane3, sizeof lane3);
+  }
+  for (; i < count; ++i) {
+    for (std::size_t l = 0; l < 4; ++l) out[l * stride + i] = in[4 * i + l];
   }
 }
 
@@ -129,8 +149,12 @@ template <std::size_t L>
 template <std::size_t L>
 [[gnu::always_inline]] inline void FoldKernel::block(std::size_t h0, std::size_t count, const double* p, bool rates,
                                                      const double* frames, double* theta, double* rate, double* y,
-                                                     double* x, std::size_t stride) const {
+                                                     double* x, double* turned, std::size_t stride) const {
+  // y, x and (with rates, for L > 1) the rates as the kernel makes them, a fold's
+  // lanes side by side ([fold][lane]: one vector store a number, no scatter); the
+  // atan2 over that array as it is; then theta and the rates lane by lane.
   using T = Lane<L>;
+  double* const rate_made = L == 1 ? rate : turned;
   for (std::size_t i = 0; i < count; ++i) {
     const std::size_t h = h0 + i;
     const double* fa = frames + 6 * L * first_[h];
@@ -143,28 +167,33 @@ template <std::size_t L>
     const T cx = na.y * nb.z - na.z * nb.y, cy = na.z * nb.x - na.x * nb.z, cz = na.x * nb.y - na.y * nb.x;
     const T yy = scaled * ((rx * cx + ry * cy) + rz * cz);
     const T xx = std::copysign(1.0, scaled) * ((na.x * nb.x + na.y * nb.y) + na.z * nb.z);
-    scatter<L>(yy, y + i, stride), scatter<L>(xx, x + i, stride);
+    std::memcpy(y + L * i, &yy, sizeof yy), std::memcpy(x + L * i, &xx, sizeof xx);
     if (!rates) continue;
     // d theta / dt: the panels' relative turning rate about the hinge (e runs j to k).
     Triple<L> wa, wb;
     load<L>(fa + 3 * L, wa), load<L>(fb + 3 * L, wb);
     const T rr = std::abs(scaled) * ((rx * (wb.x - wa.x) + ry * (wb.y - wa.y)) + rz * (wb.z - wa.z));
-    scatter<L>(rr, rate + i, stride);
+    std::memcpy(rate_made + L * i, &rr, sizeof rr);
   }
-  // Every fold through glibc's vector atan2 (four at a time), whatever the block
-  // and the lanes: the padding (0, 1) is a zero angle, discarded.
-  const std::size_t padded = (count + 3) / 4 * 4;
-  for (std::size_t l = 0; l < L; ++l) {
-    std::fill(y + l * stride + count, y + l * stride + padded, 0.0);
-    std::fill(x + l * stride + count, x + l * stride + padded, 1.0);
-    atan2_many(y + l * stride, x + l * stride, theta + l * stride, padded);
+  // Every fold through glibc's vector atan2, whatever the block and the lanes: the
+  // padding (0, 1) to a whole number of atan2 groups is a zero angle, discarded.
+  const std::size_t made = L * count, padded = (made + atan2_group - 1) / atan2_group * atan2_group;
+  std::fill(y + made, y + padded, 0.0);
+  std::fill(x + made, x + padded, 1.0);
+  if constexpr (L == 1) {
+    atan2_many(y, x, theta, padded);
+  } else {
+    atan2_many(y, x, y, padded);  // in place: each group read before it is written
+    transpose_lanes(y, count, theta, stride);
+    if (rates) transpose_lanes(turned, count, rate, stride);
   }
 }
 
 namespace {
-// Four arrays of it and the lanes: 8 KiB a lane, in the first cache levels. A multiple of 4.
+// Five arrays of it and the lanes: 10 KiB a lane, in the first cache levels. A
+// multiple of 4 and of the atan2's group.
 constexpr std::size_t block_size = 256;
-static_assert(block_size % 4 == 0);
+static_assert(block_size % 4 == 0 && block_size % atan2_group == 0);
 }  // namespace
 
 PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, double* theta, double* rate,
@@ -174,7 +203,7 @@ PHEDRA_CPU_CLONES void FoldKernel::angles(const Points& p, const Points* v, doub
   double y[block_size], x[block_size], out[block_size];
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
     const std::size_t count = std::min(block_size, size() - h0);
-    block<1>(h0, count, p.data()->data(), v, frames.data(), out, v ? rate + h0 : nullptr, y, x, block_size);
+    block<1>(h0, count, p.data()->data(), v, frames.data(), out, v ? rate + h0 : nullptr, y, x, nullptr, block_size);
     std::copy(out, out + count, theta + h0);
   }
 }
@@ -187,13 +216,14 @@ template <std::size_t L>
   const double turn = 2.0 * std::numbers::pi, per_turn = 1.0 / turn;
   const double shifter = 0x1.8p52;  // x + shifter - shifter: x rounded to a whole number (|x| < 2^51)
   double y[L * block_size], x[L * block_size], theta[L * block_size], rate[L * block_size];
+  double turned[L == 1 ? 1 : L * block_size];  // the rates as made, before their transpose
   // Four partial sums of each, a lane (no chain of additions each waiting for the
   // one before): fold h of a block in partial h % 4, four folds at once; summed at the end.
   constexpr std::size_t partial = 4;
   Four energy_sum[L] = {}, rate_sum[L] = {}, largest[L] = {};
   for (std::size_t h0 = 0; h0 < size(); h0 += block_size) {
     const std::size_t count = std::min(block_size, size() - h0);
-    block<L>(h0, count, p, v != nullptr, frames, theta, rate, y, x, block_size);
+    block<L>(h0, count, p, v != nullptr, frames, theta, rate, y, x, turned, block_size);
     if (!v) std::fill(rate, rate + L * block_size, 0.0);
     // Lane by lane: lane l's angles continuous from lane l - 1's (lane 0's from `reference`).
     for (std::size_t l = 0; l < L; ++l) {
@@ -215,7 +245,10 @@ template <std::size_t L>
           Four n;
           std::memcpy(&n, near + h, sizeof n);
           whole = ((n - raw) * per_turn + shifter) - shifter;
-          for (std::size_t s = 0; s < partial; ++s) whole_turns[h + s] = static_cast<std::int8_t>(whole[s]);
+          // Each whole number's low byte (the byte of a little-endian int32 at 0, 4, 8, 12): one shuffle.
+          const Bytes16 bytes = (Bytes16)__builtin_convertvector(whole, Whole4);
+          const Turns4 packed = __builtin_shufflevector(bytes, bytes, 0, 4, 8, 12);
+          std::memcpy(whole_turns + h, &packed, sizeof packed);
           const Four continuous = raw + turn * whole;
           Four off = continuous - n;
           off = off < 0.0 ? -off : off;
@@ -224,7 +257,9 @@ template <std::size_t L>
           std::memcpy(&d, rest + h, sizeof d);
           d = continuous - d;
         } else {
-          for (std::size_t s = 0; s < partial; ++s) whole[s] = whole_turns[h + s];
+          Turns4 packed;
+          std::memcpy(&packed, whole_turns + h, sizeof packed);
+          whole = __builtin_convertvector(packed, Four);
           const Four continuous = raw + turn * whole;
           std::memcpy(out + h, &continuous, sizeof continuous);
           std::memcpy(&d, rest + h, sizeof d);

@@ -68,11 +68,11 @@ class FoldKernel {
   /// (null: none), [node][coordinate][lane].
   template <std::size_t L>
   void panel_frames(const double* p, const double* v, double* frames) const;
-  /// Folds h0 .. h0 + count - 1 of L samples: theta (y, x: scratch), and with rates the rates;
-  /// lane l's fold i at [l * stride + i].
+  /// Folds h0 .. h0 + count - 1 of L samples: theta (y, x and, L > 1, `turned`:
+  /// scratch of L * stride), and with rates the rates; lane l's fold i at [l * stride + i].
   template <std::size_t L>
   void block(std::size_t h0, std::size_t count, const double* p, bool rates, const double* frames, double* theta,
-             double* rate, double* y, double* x, std::size_t stride) const;
+             double* rate, double* y, double* x, double* turned, std::size_t stride) const;
   template <std::size_t L>
   void energy(const double* p, const double* v, const double* reference, const double* rest, const double* weight,
               double* const* angles, std::int8_t* const* turns, Sums* sums, double* frames) const;
