@@ -20,6 +20,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <cmath>
 
 namespace {
@@ -123,7 +124,8 @@ void gltf_export(benchmark::State& state) {
 /// The energy landscape's parts on the mechanics bench's 10 x 10 array (`phedra
 /// bench` mechanics.energy_1000_s): one sample (0: the corner nodes' positions and rates, 1: the
 /// whole evaluation of E and dE/dt), the landscape of 1000 samples (2; 3:
-/// on one thread), and its set-up before the walk (4: the fold model at the rest state).
+/// on one thread), its set-up before the walk (4: the fold model at the rest
+/// state), and four samples' corner nodes together (5: FoldEnergy::load_lanes, the walk's).
 void energy(benchmark::State& state) {
   const Design array = bench::mechanics_array(10, 45);
   const double rest = array.assembly.t_star();
@@ -131,6 +133,9 @@ void energy(benchmark::State& state) {
   FoldEnergy::Scratch scratch;
   std::vector<double> angles;
   const double t = array.assembly.t_at_fraction(0.4);
+  const std::array<double, FoldEnergy::lanes> lane_ts{t, array.assembly.t_at_fraction(0.401),
+                                                      array.assembly.t_at_fraction(0.402),
+                                                      array.assembly.t_at_fraction(0.403)};
   EnergyOptions options;
   options.rest_t = rest;
   options.samples = 1000;
@@ -141,6 +146,8 @@ void energy(benchmark::State& state) {
       benchmark::DoNotOptimize(scratch.x.data());
     } else if (state.range(0) == 1) {
       benchmark::DoNotOptimize(fold.evaluate(t, fold.rest_angles(), angles, scratch));
+    } else if (state.range(0) == 5) {
+      benchmark::DoNotOptimize(fold.load_lanes(lane_ts.data(), scratch));
     } else if (state.range(0) == 4) {
       benchmark::DoNotOptimize(FoldEnergy(array, rest, StiffnessOptions{}).rest_angles().data());
     } else {
@@ -200,5 +207,5 @@ BENCHMARK(gltf_export)->Unit(benchmark::kMillisecond)->Iterations(1);
 BENCHMARK(collision_at_t_star)->Arg(111)->Arg(1111)->Unit(benchmark::kMillisecond);
 BENCHMARK(keep_step)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(modes)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
-BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Unit(benchmark::kMillisecond);
+BENCHMARK(energy)->Arg(0)->Arg(1)->Arg(2)->Arg(3)->Arg(4)->Arg(5)->Unit(benchmark::kMillisecond);
 BENCHMARK_MAIN();

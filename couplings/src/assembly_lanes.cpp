@@ -82,7 +82,7 @@ PHEDRA_CPU_CLONES void SeededMember::first_row_lanes(const double* parent_apexes
 PHEDRA_CPU_CLONES void SeededMember::row_lanes(std::size_t i, const double* s, const double* parent_axial,
                                                const double* parent_general, const double* previous_axial,
                                                const double* previous_general, double* axial, double* general,
-                                               bool closure) const {
+                                               bool closure, std::span<const std::uint32_t> general_columns) const {
   const std::size_t n = motion_.columns();
   const std::size_t count = closed_ && !closure ? n - 1 : n;
   copy_entry(parent_axial, axial);
@@ -100,9 +100,11 @@ PHEDRA_CPU_CLONES void SeededMember::row_lanes(std::size_t i, const double* s, c
     std::memcpy(axial + (j + 1) * entry + 2 * L, &nz, sizeof nz);
   }
   copy_entry(parent_general, general);
-  // NetMotion::advance_general_row from column 1.
+  // NetMotion::advance_general_row from column 1, where read (a column's entry
+  // needs only its row i - 1 and the axial net's).
   const double* q = motion_.row_scales(i);
-  for (std::size_t j = 1; j < count; ++j) {
+  for (const std::uint32_t j : general_columns) {
+    if (j >= count) break;
     for (std::size_t c = 0; c < 3; ++c) {
       const std::size_t at = j * entry + c * L;
       Four g, a, b;
@@ -164,7 +166,7 @@ PHEDRA_CPU_CLONES bool Assembly::vertices_lanes(const double* ts, std::span<cons
         } else {
           member.row_lanes(i, apexes_of(m, kind), parent_axial, read_row(parent, kind, 1, i) + k * entry,
                            member_row(m, kind, 0, i - 1), member_row(m, kind, 1, i - 1), member_row(m, kind, 0, i),
-                           member_row(m, kind, 1, i), false);
+                           member_row(m, kind, 1, i), false, by_row.general_columns[m]);
         }
       }
       // The vertices of row i (Assembly::write_vertices, NetWriter::user_point).
@@ -214,6 +216,22 @@ Assembly::RowPlaces Assembly::places_by_row(std::span<const NetPlace> places) co
   out.order.resize(places.size());
   std::vector<std::size_t> next(out.first.begin(), out.first.end() - 1);
   for (std::size_t k = 0; k < places.size(); ++k) out.order[next[row_of(places[k])]++] = static_cast<std::uint32_t>(k);
+  // The general columns read: the places' and the seeds' lines (a child reads its parent's).
+  std::vector<std::vector<bool>> read(members_.size());
+  for (std::size_t m = 1; m < members_.size(); ++m) read[m].assign(members_[m].seeded->columns() + 1, false);
+  for (const NetPlace& p : places) {
+    if (p.member != 0) read[p.member][p.entry % members_[p.member].seeded->columns()] = true;
+  }
+  for (std::size_t m = 1; m < members_.size(); ++m) {
+    const Seed& seed = members_[m].seeded->seed();
+    if (seed.parent != 0) read[seed.parent][seed.vertex_line] = true;
+  }
+  out.general_columns.resize(members_.size());
+  for (std::size_t m = 1; m < members_.size(); ++m) {
+    for (std::size_t j = 1; j < read[m].size(); ++j) {
+      if (read[m][j]) out.general_columns[m].push_back(static_cast<std::uint32_t>(j));
+    }
+  }
   return out;
 }
 

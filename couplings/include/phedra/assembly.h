@@ -110,10 +110,15 @@ class Assembly {
     std::vector<double> rows, apexes;  ///< the members' last two rows and their apexes
     std::vector<std::size_t> columns, offset;
   };
-  /// Places grouped by their row: order[first[i] .. first[i + 1]) are row i's.
+  /// Places grouped by their row: order[first[i] .. first[i + 1]) are row i's;
+  /// and for each member (not the base) the columns j >= 1 of its general net
+  /// that anything reads (a place, or a child's seed line), ascending: the lanes'
+  /// recursions make no other (a vertex line coupled members share is read from
+  /// one of them).
   struct RowPlaces {
     std::vector<std::uint32_t> order;
     std::vector<std::size_t> first;
+    std::vector<std::vector<std::uint32_t>> general_columns;
   };
   RowPlaces places_by_row(std::span<const NetPlace> places) const;
   /// The vertices at `places` (grouped by places_by_row) of `lanes` samples ts[0..lanes) at once, positions

@@ -12,6 +12,7 @@
 #include "phedra/net_motion.h"
 
 #include <string>
+#include <span>
 #include <vector>
 
 namespace phedra {
@@ -73,10 +74,12 @@ class SeededMember {
   void first_row_lanes(const double* parent_apexes, const double* parent_vertex, double* apexes, double* axial,
                        double* general) const;
   /// and row i >= 1 from the apexes, the parent's axial and general vertices on
-  /// the seed's line in row i and this member's row i - 1.
+  /// the seed's line in row i and this member's row i - 1: the axial row whole,
+  /// the general one at column 0 and `general_columns` (ascending, >= 1; a column
+  /// past the row's last is not made).
   void row_lanes(std::size_t i, const double* apexes, const double* parent_axial, const double* parent_general,
                  const double* previous_axial, const double* previous_general, double* axial, double* general,
-                 bool closure) const;
+                 bool closure, std::span<const std::uint32_t> general_columns) const;
 
  private:
   Seed seed_;
