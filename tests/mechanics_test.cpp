@@ -714,10 +714,12 @@ TEST_CASE("the energy landscape at rest a hair inside a flexion limit: the rest 
   CHECK(e.equilibria.front().energy == Approx(0.0).margin(1e-20));
 }
 
-TEST_CASE("the energy landscape on two threads (halves of the samples) equals one walk, bit for bit, forces too", "[mechanics]") {
-  // The rest state near either end (one side nearly all the samples: the far part
-  // of the longer side starts afresh on the second thread and is joined), on every
-  // shipped preset and the bistable design.
+TEST_CASE("the energy landscape on two threads (parts taken afresh and joined) equals one walk, bit for bit, forces too", "[mechanics]") {
+  // The rest state near either end (one side nearly all the samples: the thread
+  // done with the shorter side takes the far half of the longer one, starting
+  // afresh, and either thread then takes the other's far half while 16 samples or
+  // more are left; the parts are joined afterwards, or walked again where a fold
+  // turned past half a turn), on every shipped preset and the bistable design.
   std::vector<std::filesystem::path> files{std::filesystem::path(test::data) / "bistable.json"};
 #ifdef PHEDRA_SANITIZE_BUILD
   files.push_back(std::filesystem::path(test::presets) / "grid-3x3.json");  // the code paths (30 s for all there)

@@ -14,8 +14,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <deque>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <thread>
 
 namespace phedra {
@@ -288,31 +290,56 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
     TurnsKept kept_turns(turns_kept);
     record(rest, at_rest, scratch, kept_turns);
   }
-  // Outwards from the rest state. For large models on two threads, in halves of
-  // the samples: one thread walks the longer side's near part, the other the
-  // shorter side and then the longer side's far part from a fresh start (its
-  // angles nearest the rest angles). Joined afterwards: when the walk through
-  // the near part reaches the far part's first sample with the same angles (the
-  // same turns of every fold), the far part is what one walk gives, bit for bit;
-  // else (a fold turned past a half turn on the way) it is walked again from there.
+  // Outwards from the rest state, each side in segments of its samples, each
+  // walked by one thread. For large models on two threads: one thread walks the
+  // longer side from the rest state, the other the shorter side; a thread whose
+  // segment is done takes the far half of the unwalked samples of the segment
+  // with the most left (when 16 or more), starting there afresh (its angles
+  // nearest the rest angles): neither waits for the other while work is left,
+  // whatever else the processors run. Joined afterwards: when the walk through a
+  // segment reaches the next one's first sample with the same angles (the same
+  // turns of every fold), the next segment is what one walk gives, bit for bit;
+  // else (a fold turned past a half turn on the way) the rest of the side is
+  // walked again from there.
   const bool large = options.two_threads && static_cast<double>(out.folds) * static_cast<double>(ts.size()) > 2e5;
-  // Samples rest + direction k for k = first..last, carried from `from`; the last point.
-  // Four at a time (FoldEnergy::evaluate_lanes, each lane carried from the one
-  // before: what one at a time gives, bit for bit), one at a time where a sample
-  // of the four is a flexion limit, for the last few, from a sample where a fold
-  // turned by more than half a radian since the one before (carried: the step
-  // halved), and all of them where the strain needs every member vertex (no
-  // vertex-to-node map: the lanes give no member's nets).
-  auto walk = [&](Point from, int direction, std::size_t first, std::size_t last, FoldEnergy::Scratch& scratch) {
-    constexpr std::size_t lanes = FoldEnergy::lanes;
+  constexpr std::size_t lanes = FoldEnergy::lanes, least_taken = 16;
+  struct Part {
+    int direction = 1;                 ///< samples rest + direction k
+    std::size_t first = 1, next = 1;  ///< its first k, and the first not yet walked
+    std::size_t last = 0;             ///< its last k (lowered when another thread takes the far part)
+    std::optional<std::vector<double>> start;  ///< a fresh start's angles at `first` (none: from the rest state)
+    Point end;                        ///< the last point walked
+  };
+  std::deque<Part> segments;  // the sides' parts (stable references while parts are added)
+  std::mutex claims;
+  // Up to `lanes` samples from k on that are the segment's to walk (0: it is done); none past its last.
+  auto claim = [&](Part& segment, std::size_t k) {
+    const std::lock_guard<std::mutex> lock(claims);
+    const std::size_t n = k > segment.last ? 0 : std::min(lanes, segment.last + 1 - k);
+    segment.next = k + n;
+    return n;
+  };
+  // Walks samples k = first, first + 1, ... of `segment` (claimed up to `lanes`
+  // at a time) from `from`; the last point. Four at a time
+  // (FoldEnergy::evaluate_lanes, each lane carried from the one before: what one
+  // at a time gives, bit for bit), one at a time where a sample of the four is a
+  // flexion limit, for the last few, from a sample where a fold turned by more
+  // than half a radian since the one before (carried: the step halved), and all
+  // of them where the strain needs every member vertex (no vertex-to-node map:
+  // the lanes give no member's nets).
+  auto walk = [&](Point from, Part& segment, std::size_t first, FoldEnergy::Scratch& scratch,
+                  TurnsKept& kept_turns) {
+    const int direction = segment.direction;
     auto index = [&](std::size_t k) { return direction > 0 ? rest + k : rest - k; };
     std::array<std::vector<double>, lanes> lane_angles;
     std::array<HomogenizedStrain::State, lanes> states;
-    TurnsKept kept_turns(turns_kept);
-    for (std::size_t k = first; k <= last;) {
+    for (std::size_t k = first;;) {
+      const std::size_t n = claim(segment, k);
+      if (n == 0) break;
+      const std::size_t group_end = k + n;
       std::array<double, lanes> lane_ts;
-      for (std::size_t l = 0; l < lanes && k + l <= last; ++l) lane_ts[l] = ts[index(k + l)];
-      if (at_nodes && last - k + 1 >= lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
+      for (std::size_t l = 0; l < n; ++l) lane_ts[l] = ts[index(k + l)];
+      if (at_nodes && n == lanes && !from.angles.empty() && fold.load_lanes(lane_ts.data(), scratch)) {
         strain.states_of_lanes(scratch.lane_x.data(), scratch.lane_v.data(), strain_weights, states.data());
         const std::array<FoldEnergy::Value, lanes> values = fold.evaluate_lanes(from.angles, lane_angles, scratch);
         std::size_t l = 0;
@@ -327,47 +354,86 @@ EnergyLandscape energy_landscape(const Design& design, const EnergyOptions& opti
           std::swap(from.angles, lane_angles[l - 1]);
           k += l;
         }
-        if (l == lanes) continue;
       }
-      from = carried(fold, from, ts[index(k)], scratch);
-      record(index(k), from, scratch, kept_turns);
-      ++k;
+      for (; k < group_end; ++k) {
+        from = carried(fold, from, ts[index(k)], scratch);
+        record(index(k), from, scratch, kept_turns);
+      }
     }
     return from;
+  };
+  // Walks `segment` to its end: from the rest state, or from a fresh start at its first sample.
+  auto walk_segment = [&](Part& segment, FoldEnergy::Scratch& scratch) {
+    TurnsKept kept_turns(turns_kept);
+    Point from = at_rest;
+    if (segment.start) {
+      const std::size_t i = segment.direction > 0 ? rest + segment.first : rest - segment.first;
+      from = Point{ts[i], 0.0, std::nullopt, {}};
+      const FoldEnergy::Value v = fold.evaluate(from.t, fold.rest_angles(), from.angles, scratch);
+      from.energy = v.energy;
+      from.rate = v.rate;
+      record(i, from, scratch, kept_turns);
+      *segment.start = from.angles;
+    }
+    segment.end = walk(std::move(from), segment, segment.start ? segment.first + 1 : segment.first, scratch, kept_turns);
+  };
+  // The far half of the unwalked samples of the segment with the most left, as a new segment (none: too few left).
+  auto take = [&]() -> Part* {
+    const std::lock_guard<std::mutex> lock(claims);
+    Part* most = nullptr;
+    for (Part& s : segments) {
+      if (s.last + 1 >= s.next + least_taken && (!most || s.last - s.next > most->last - most->next)) most = &s;
+    }
+    if (!most) return nullptr;
+    const std::size_t from = most->next + (most->last + 1 - most->next) / 2;
+    Part& taken = segments.emplace_back();
+    taken.direction = most->direction;
+    taken.first = taken.next = from;
+    taken.last = most->last;
+    taken.start.emplace();
+    most->last = from - 1;
+    return &taken;
   };
   const std::size_t right = ts.size() - 1 - rest, left = rest;
   const int longer = right >= left ? 1 : -1;
   const std::size_t long_count = std::max(right, left), short_count = std::min(right, left);
-  const std::size_t half = (long_count + short_count + 1) / 2;
-  const std::size_t near = large && long_count > half ? half : long_count;  // the longer side's near part
-  const std::size_t far_first = longer > 0 ? rest + near + 1 : rest - near - 1;
-  Point near_end, far_start;
-  both(
-      large,
-      [&] {
-        FoldEnergy::Scratch scratch;
-        near_end = walk(at_rest, longer, 1, near, scratch);
-      },
-      [&] {
-        FoldEnergy::Scratch scratch;
-        walk(at_rest, -longer, 1, short_count, scratch);
-        if (near == long_count) return;
-        far_start = Point{ts[far_first], 0.0, std::nullopt, {}};
-        const FoldEnergy::Value v = fold.evaluate(far_start.t, fold.rest_angles(), far_start.angles, scratch);
-        far_start.energy = v.energy;
-        far_start.rate = v.rate;
-        TurnsKept kept_turns(turns_kept);
-        record(far_first, far_start, scratch, kept_turns);
-        walk(far_start, longer, near + 2, long_count, scratch);
-      });
-  if (near < long_count) {
+  Part& long_side = segments.emplace_back();
+  long_side.direction = longer;
+  long_side.last = long_count;
+  Part& short_side = segments.emplace_back();
+  short_side.direction = -longer;
+  short_side.last = short_count;
+  auto worker = [&](Part& first) {
     FoldEnergy::Scratch scratch;
-    const Point joined = carried(fold, near_end, ts[far_first], scratch);
-    if (joined.angles != far_start.angles) {
-      for (std::size_t k = near + 1; k <= long_count; ++k) turns_kept[longer > 0 ? rest + k : rest - k].reset();
+    walk_segment(first, scratch);
+    while (large) {
+      Part* taken = take();
+      if (!taken) break;
+      walk_segment(*taken, scratch);
+    }
+  };
+  both(large, [&] { worker(long_side); }, [&] { worker(short_side); });
+  for (const int direction : {longer, -longer}) {
+    std::vector<Part*> side;
+    for (Part& s : segments) {
+      if (s.direction == direction && s.first <= s.last) side.push_back(&s);
+    }
+    std::sort(side.begin(), side.end(), [](const Part* x, const Part* y) { return x->first < y->first; });
+    for (std::size_t k = 1; k < side.size(); ++k) {
+      FoldEnergy::Scratch scratch;
+      const std::size_t first = side[k]->first, count = direction == longer ? long_count : short_count;
+      auto index = [&](std::size_t j) { return direction > 0 ? rest + j : rest - j; };
+      const Point joined = carried(fold, side[k - 1]->end, ts[index(first)], scratch);
+      if (joined.angles == *side[k]->start) continue;
+      for (std::size_t j = first; j <= count; ++j) turns_kept[index(j)].reset();
       TurnsKept kept_turns(turns_kept);
-      record(far_first, joined, scratch, kept_turns);
-      walk(joined, longer, near + 2, long_count, scratch);
+      record(index(first), joined, scratch, kept_turns);
+      Part rest_of_side;
+      rest_of_side.direction = direction;
+      rest_of_side.first = rest_of_side.next = first + 1;
+      rest_of_side.last = count;
+      walk(joined, rest_of_side, first + 1, scratch, kept_turns);
+      break;
     }
   }
   for (const Kept& p : points) out.largest_energy = std::max(out.largest_energy, p.energy);
