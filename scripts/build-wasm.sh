@@ -50,7 +50,7 @@ unity exporters "${exporter_sources[@]}"
 # the mobility (LAPACK) of the command's report: the energy landscape and the figures.
 mechanics_sources=()
 for f in mechanics/src/*.cpp; do
-  case "$f" in *chart*|*_avx2*|*mobility*|*dense_svd*|*mechanics_report*|*supernodal_solve*) ;; *) mechanics_sources+=("$f") ;; esac
+  case "$f" in *chart*|*_avx2*|*_avx512*|*mobility*|*dense_svd*|*mechanics_report*|*supernodal_solve*) ;; *) mechanics_sources+=("$f") ;; esac
 done
 unity mechanics "${mechanics_sources[@]}"
 sources+=("$out/unity/mechanics.cpp" "$out/unity/exporters.cpp" wasm/tinygltf_implementation.cpp wasm/bindings.cpp)
