@@ -28,6 +28,7 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -237,8 +238,8 @@ TEST_CASE("the model's counts and rules: triangles, shared walls, T-junctions, n
 }
 
 TEST_CASE("the fold angles' atan2 in bulk equals std::atan2 in every quadrant and tail length", "[mechanics]") {
-  // atan2_many takes glibc's vector atan2 (four at a time) where the processor has
-  // AVX2: a wrong calling convention there gives garbage, not a small error.
+  // atan2_many takes glibc's vector atan2 (eight or four at a time) where the processor has
+  // AVX-512 or AVX2: a wrong calling convention there gives garbage, not a small error.
   std::mt19937_64 rng(36);
   for (std::size_t n = 0; n <= 41; ++n) {
     std::vector<double> y(n), x(n), out(n, -7.0);
@@ -256,6 +257,41 @@ TEST_CASE("the fold angles' atan2 in bulk equals std::atan2 in every quadrant an
     }
   }
 }
+
+#if defined(__x86_64__) && !defined(__EMSCRIPTEN__)
+namespace phedra {
+void atan2_avx2(const double* y, const double* x, double* out, std::size_t n);
+void atan2_avx512(const double* y, const double* x, double* out, std::size_t n);
+}  // namespace phedra
+
+TEST_CASE("glibc's eight-wide vector atan2 gives the four-wide one's bits", "[mechanics]") {
+  // atan2_many takes the eight-wide one where the processor has AVX-512 and the
+  // four-wide one elsewhere (and for a block's last four): the energy's samples
+  // evaluated four together equal each alone only if a fold's angle does not
+  // depend on which of them made it. Flat folds (y = +-0 or tiny, x = -1), zeros,
+  // and ratios from 1e-300 to 1e300.
+  if (!(__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx2") &&
+        __builtin_cpu_supports("fma"))) {
+    WARN("no AVX-512 here: nothing to compare");
+    return;
+  }
+  std::mt19937_64 rng(37);
+  const std::size_t n = 1 << 16;
+  std::vector<double> y(n), x(n), four(n), eight(n);
+  for (std::size_t h = 0; h < n; ++h) {
+    const double r = std::pow(10.0, test::uniform(rng, -150, 150)), a = test::uniform(rng, -pi, pi);
+    y[h] = r * std::sin(a), x[h] = std::pow(10.0, test::uniform(rng, -150, 150)) * std::cos(a);
+    if (h % 11 == 0) y[h] = h % 2 ? 0.0 : -0.0, x[h] = -1.0;
+    if (h % 13 == 0) y[h] = std::copysign(1e-17, test::uniform(rng, -1, 1)), x[h] = -1.0;
+    if (h % 17 == 0) x[h] = h % 2 ? 0.0 : -0.0;
+  }
+  atan2_avx2(y.data(), x.data(), four.data(), n);
+  atan2_avx512(y.data(), x.data(), eight.data(), n);
+  std::size_t different = 0;
+  for (std::size_t h = 0; h < n; ++h) different += std::memcmp(&four[h], &eight[h], sizeof(double)) != 0;
+  CHECK(different == 0);
+}
+#endif
 
 TEST_CASE("the energy's fold kernel (panel normals) equals MERLIN2's angle and its gradient times the rates", "[mechanics]") {
   // The kernel takes each fold's angle from its panels' unit normals (planar at
