@@ -474,13 +474,14 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
       CHECK((x4.col(r) - expected).norm() <= 1e-9 * expected.norm());
     }
   };
-  // Random node graphs (elements of 1-5 nodes, 3 x 3 blocks): diagonally dominant, so
-  // positive definite; sizes whose supernodes are 1..3 columns and wider than four.
+  // Random node graphs (elements of 1-5 nodes, then of 1-12, 3 x 3 blocks): diagonally
+  // dominant, so positive definite; supernodes of 1..3 columns and wider than eight
+  // (the solves' blocks of four and eight columns and every remainder).
   for (int round = 0; round < 12; ++round) {
     const std::size_t nodes = 2 + static_cast<std::size_t>(test::uniform(rng, 0, 120));
     std::vector<std::vector<std::size_t>> elements(nodes + static_cast<std::size_t>(test::uniform(rng, 0, 200)));
     for (auto& e : elements) {
-      e.resize(static_cast<std::size_t>(test::uniform(rng, 1, 5.99)));
+      e.resize(static_cast<std::size_t>(test::uniform(rng, 1, round < 6 ? 5.99 : 12.99)));
       for (auto& v : e) v = static_cast<std::size_t>(test::uniform(rng, 0, static_cast<double>(nodes) - 1e-9));
     }
     for (std::size_t i = 0; i < nodes; ++i) elements[i] = {i};  // every diagonal block present

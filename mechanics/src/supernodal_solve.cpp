@@ -208,16 +208,85 @@ namespace {
   r[3] += s3;
 }
 
+/// Asks for the factor's entries `ahead` rows beyond row i of eight columns, for
+/// the non-temporal level (each entry is read once a pass): the eight streams of
+/// a block otherwise wait on memory at every block's start (docs/performance.md).
+[[gnu::always_inline]] inline void prefetch_columns8(const double* c, std::size_t ld, int i) {
+  constexpr int ahead = 48;  // rows: six cache lines
+  for (std::size_t k = 0; k < 8; ++k) __builtin_prefetch(c + k * ld + i + ahead, 0, 0);
+}
+
+/// subtract_columns4 for eight columns: y's row read and written once for eight
+/// of the factor's entries (the pass's traffic to y halved), the sum a tree.
+[[gnu::always_inline]] inline void subtract_columns8(double* y, int n, const double* c, std::size_t ld, const double* x) {
+  const Lane4 x0 = load4(x), x1 = load4(x + 4), x2 = load4(x + 8), x3 = load4(x + 12), x4 = load4(x + 16),
+              x5 = load4(x + 20), x6 = load4(x + 24), x7 = load4(x + 28);
+  const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld, *c4 = c + 4 * ld, *c5 = c + 5 * ld,
+               *c6 = c + 6 * ld, *c7 = c + 7 * ld;
+  for (int i = 0; i < n; ++i) {
+    if ((i & 7) == 0) prefetch_columns8(c, ld, i);
+    const Lane4 s = c0[i] * x0 + c1[i] * x1, t = c2[i] * x2 + c3[i] * x3, u = c4[i] * x4 + c5[i] * x5,
+                v = c6[i] * x6 + c7[i] * x7;
+    store4(y + 4 * i, load4(y + 4 * i) - ((s + t) + (u + v)));
+  }
+}
+
+/// add_dots4 for eight columns: eight independent sums, v's row read once for eight.
+[[gnu::always_inline]] inline void add_dots8(Lane4* r, int n, const double* c, std::size_t ld, const double* v) {
+  const double *c0 = c, *c1 = c + ld, *c2 = c + 2 * ld, *c3 = c + 3 * ld, *c4 = c + 4 * ld, *c5 = c + 5 * ld,
+               *c6 = c + 6 * ld, *c7 = c + 7 * ld;
+  Lane4 s0 = {0.0, 0.0, 0.0, 0.0}, s1 = s0, s2 = s0, s3 = s0, s4 = s0, s5 = s0, s6 = s0, s7 = s0;
+  for (int i = 0; i < n; ++i) {
+    if ((i & 7) == 0) prefetch_columns8(c, ld, i);
+    const Lane4 t = load4(v + 4 * i);
+    s0 += c0[i] * t;
+    s1 += c1[i] * t;
+    s2 += c2[i] * t;
+    s3 += c3[i] * t;
+    s4 += c4[i] * t;
+    s5 += c5[i] * t;
+    s6 += c6[i] * t;
+    s7 += c7[i] * t;
+  }
+  r[0] += s0;
+  r[1] += s1;
+  r[2] += s2;
+  r[3] += s3;
+  r[4] += s4;
+  r[5] += s5;
+  r[6] += s6;
+  r[7] += s7;
+}
+
+/// y[i] -= sum over k < w of column k's entry i times x[k] (rows of four), w <= 8.
+[[gnu::always_inline]] inline void subtract_block(double* y, int n, const double* c, std::size_t ld, const double* x,
+                                                  int w) {
+  if (w == 8) return subtract_columns8(y, n, c, ld, x);
+  subtract_columns4(y, n, c, ld, x, w < 4 ? w : 4);
+  if (w > 4) subtract_columns4(y, n, c + 4 * ld, ld, x + 16, w - 4);
+}
+
+/// r[k] += sum over i < n of column k's entry i times v[i] (rows of four), k < w <= 8.
+[[gnu::always_inline]] inline void add_block_dots(Lane4* r, int n, const double* c, std::size_t ld, const double* v,
+                                                  int w) {
+  if (w == 8) return add_dots8(r, n, c, ld, v);
+  add_dots4(r, n, c, ld, v, w < 4 ? w : 4);
+  if (w > 4) add_dots4(r + 4, n, c + 4 * ld, ld, v, w - 4);
+}
+
 }  // namespace
 
 PHEDRA_CPU_CLONES_V4 void supernodal_solve4(const SupernodalFactor& l, double* x, double* work) {
-  // As supernodal_solve, a row being four values (one Lane4).
+  // As supernodal_solve, a row being four values (one Lane4), and blocks of eight
+  // columns: on the 10^4-panel array's factor the passes are bound by the loads
+  // and stores a factor entry costs, not by memory (docs/performance.md).
+  constexpr int block_width = 8;
   for (int s = 0; s < l.supernodes; ++s) {
     const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + 4 * static_cast<std::size_t>(first);
     for (int i = 0; i < 4 * below; ++i) work[i] = 0.0;
-    for (int jb = 0; jb < columns; jb += 4) {
-      const int w = columns - jb < 4 ? columns - jb : 4;
+    for (int jb = 0; jb < columns; jb += block_width) {
+      const int w = columns - jb < block_width ? columns - jb : block_width;
       const double* block = a + static_cast<std::size_t>(jb) * ld;
       for (int j = 0; j < w; ++j) {
         const double* column = block + static_cast<std::size_t>(j) * ld;
@@ -225,8 +294,8 @@ PHEDRA_CPU_CLONES_V4 void supernodal_solve4(const SupernodalFactor& l, double* x
         store4(xs + 4 * (jb + j), xj);
         for (int i = j + 1; i < w; ++i) store4(xs + 4 * (jb + i), load4(xs + 4 * (jb + i)) - column[jb + i] * xj);
       }
-      subtract_columns4(xs + 4 * (jb + w), columns - jb - w, block + jb + w, ld, xs + 4 * jb, w);
-      subtract_columns4(work, below, block + columns, ld, xs + 4 * jb, w);
+      subtract_block(xs + 4 * (jb + w), columns - jb - w, block + jb + w, ld, xs + 4 * jb, w);
+      subtract_block(work, below, block + columns, ld, xs + 4 * jb, w);
     }
     for (int i = 0; i < below; ++i) {
       double* target = x + 4 * static_cast<std::size_t>(rows[i]);
@@ -237,12 +306,12 @@ PHEDRA_CPU_CLONES_V4 void supernodal_solve4(const SupernodalFactor& l, double* x
     const auto [first, columns, below, ld, a, rows] = supernode(l, s);
     double* xs = x + 4 * static_cast<std::size_t>(first);
     for (int i = 0; i < below; ++i) store4(work + 4 * i, load4(x + 4 * static_cast<std::size_t>(rows[i])));
-    for (int jb = (columns - 1) / 4 * 4; jb >= 0; jb -= 4) {
-      const int w = columns - jb < 4 ? columns - jb : 4;
+    for (int jb = (columns - 1) / block_width * block_width; jb >= 0; jb -= block_width) {
+      const int w = columns - jb < block_width ? columns - jb : block_width;
       const double* block = a + static_cast<std::size_t>(jb) * ld;
-      Lane4 r[4] = {};
-      add_dots4(r, below, block + columns, ld, work, w);
-      add_dots4(r, columns - jb - w, block + jb + w, ld, xs + 4 * (jb + w), w);
+      Lane4 r[block_width] = {};
+      add_block_dots(r, below, block + columns, ld, work, w);
+      add_block_dots(r, columns - jb - w, block + jb + w, ld, xs + 4 * (jb + w), w);
       for (int j = w - 1; j >= 0; --j) {
         const double* column = block + static_cast<std::size_t>(j) * ld;
         Lane4 sum = r[j];

@@ -7,7 +7,10 @@
 // (register-blocked), compiled for AVX2 and the baseline (PHEDRA_CPU_CLONES):
 // 27-29 ms, near this machine's streaming bandwidth (docs/performance.md). The
 // solve of four has an AVX-512 clone too (the same 256-bit arithmetic with 32
-// registers and broadcast operands): 35.5-43.7 ms against 40.2-48.7 (AVX2).
+// registers and broadcast operands) and takes the factor eight columns at a time
+// with software prefetch: a row of four right-hand sides is read and written once
+// for eight of the factor's entries, where the pass had been bound by those loads
+// and stores, not by memory: 27.6-29.8 ms against 32.7-36.4 with four columns.
 
 namespace phedra {
 
@@ -29,8 +32,7 @@ void supernodal_solve(const SupernodalFactor& l, double* x, double* work);
 
 /// The same for four right-hand sides at once, interleaved: x[4 i + r] is row i of
 /// the r-th. Each entry of L is read once a pass for all four (a solve of four
-/// costs about what one does: the passes are bound by reading L). work holds
-/// four doubles a row of L.
+/// costs about what one does). work holds four doubles a row of L.
 void supernodal_solve4(const SupernodalFactor& l, double* x, double* work);
 
 }  // namespace phedra
