@@ -21,6 +21,7 @@
 #include "../mechanics/src/vertex_nodes.h"    // vertex_nodes (internal to mechanics/)
 #include "../mechanics/src/node_cholesky.h"   // NodeCholesky (internal to mechanics/)
 #include "../mechanics/src/block_lanczos.h"   // block_lanczos_largest (internal to mechanics/)
+#include "../mechanics/src/cholmod_memory.h"  // reports_free_pages (internal to mechanics/)
 
 #include <catch2/catch.hpp>
 #include <Spectra/SymEigsShiftSolver.h>
@@ -30,6 +31,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -509,6 +511,26 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
     // Not positive definite: a clear internal error, nothing printed.
     CHECK_THROWS_AS(NodeCholesky(k, -1.0), Error);
   }
+}
+
+TEST_CASE("huge pages: a virtio balloon that reports free pages is recognized, nothing else is", "[mechanics]") {
+  const test::TempDir dir("virtio");
+  const auto device = [&](const std::string& name, const std::string& id, const std::string& features) {
+    std::filesystem::create_directories(dir.path / name);
+    std::ofstream(dir.path / name / "device") << id << "\n";
+    std::ofstream(dir.path / name / "features") << features << "\n";
+  };
+  CHECK_FALSE(reports_free_pages(dir.path / "absent"));  // not a virtio guest
+  CHECK_FALSE(reports_free_pages(dir.path));            // no devices
+  // A network device with bit 5 set, a balloon without it (statistics and deflate on OOM only).
+  device("virtio1", "0x0001", "11000101101110110000000000000100");
+  device("virtio0", "0x0005", "01100001000000000000000000000000");
+  CHECK_FALSE(reports_free_pages(dir.path));
+  // This VM's balloon: statistics, deflate on OOM, free page reporting (bit 5).
+  device("virtio0", "0x0005", "01100101000000000000000000000000");
+  CHECK(reports_free_pages(dir.path));
+  device("virtio0", "0x0005", "0110");  // a features string too short to say
+  CHECK_FALSE(reports_free_pages(dir.path));
 }
 
 TEST_CASE("block Lanczos: the largest eigenpairs of (K + shift I)^-1 off the rigid motions, against a dense solve",
