@@ -513,6 +513,60 @@ TEST_CASE("the stiffness's Cholesky factor solves K + shift I (one and four righ
   }
 }
 
+TEST_CASE("the Cholesky factor's ordering: nested dissection where it has fewer entries than AMD (a 3D lattice), AMD where it has (a chain)",
+          "[mechanics]") {
+  // Nodes of three rows, coupled to their lattice neighbours (3 x 3 blocks); diagonally
+  // dominant. CHOLMOD's own choice kept AMD on such node graphs (docs/performance.md).
+  const auto lattice = [](int nx, int ny, int nz) {
+    const int nodes = nx * ny * nz;
+    std::vector<std::vector<std::size_t>> elements;
+    const auto id = [&](int x, int y, int z) { return static_cast<std::size_t>((z * ny + y) * nx + x); };
+    for (int z = 0; z < nz; ++z) {
+      for (int y = 0; y < ny; ++y) {
+        for (int x = 0; x < nx; ++x) {
+          elements.push_back({id(x, y, z)});
+          if (x + 1 < nx) elements.push_back({id(x, y, z), id(x + 1, y, z)});
+          if (y + 1 < ny) elements.push_back({id(x, y, z), id(x, y + 1, z)});
+          if (z + 1 < nz) elements.push_back({id(x, y, z), id(x, y, z + 1)});
+        }
+      }
+    }
+    std::vector<std::span<const std::size_t>> spans(elements.begin(), elements.end());
+    BlockAssembly assembly(static_cast<std::size_t>(nodes), spans);
+    for (const auto& e : elements) {
+      for (std::size_t r : e) {
+        for (std::size_t c : e) {
+          if (r <= c) assembly.add(r, c, r == c ? Mat3(Mat3::Identity() * 40.0) : Mat3(Mat3::Constant(0.5)));
+        }
+      }
+    }
+    return assembly.upper();
+  };
+  const auto amd_entries = [](const Eigen::SparseMatrix<double>& a) {
+    const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Upper, Eigen::AMDOrdering<int>> llt(a);
+    REQUIRE(llt.info() == Eigen::Success);
+    return static_cast<double>(llt.matrixL().nestedExpression().nonZeros());
+  };
+  const auto solves = [](const Eigen::SparseMatrix<double>& a, const NodeCholesky& factor) {
+    const Eigen::VectorXd b = Eigen::VectorXd::Random(a.rows());
+    Eigen::VectorXd x(a.rows());
+    factor.solve(b.data(), x.data());
+    CHECK((a.selfadjointView<Eigen::Upper>() * x - b).norm() <= 1e-12 * b.norm());
+  };
+  const Eigen::SparseMatrix<double> cube = lattice(12, 12, 12);
+  const NodeCholesky cube_factor(cube);
+  solves(cube, cube_factor);
+  const double amd = amd_entries(cube);
+  INFO("entries " << cube_factor.factor_entries() << ", AMD's " << amd);
+  CHECK(cube_factor.factor_entries() < 0.9 * amd);
+  const int length = 1200;
+  const Eigen::SparseMatrix<double> chain = lattice(length, 1, 1);
+  const NodeCholesky chain_factor(chain);
+  solves(chain, chain_factor);
+  CHECK(chain_factor.factor_entries() == 6.0 * length + 9.0 * (length - 1));  // no fill: AMD's
+  CHECK(amd_entries(chain) == chain_factor.factor_entries());
+}
+
 TEST_CASE("huge pages: a virtio balloon that reports free pages is recognized, nothing else is", "[mechanics]") {
   const test::TempDir dir("virtio");
   const auto device = [&](const std::string& name, const std::string& id, const std::string& features) {

@@ -2,10 +2,11 @@
 // The Cholesky factor of a stiffness matrix (3 rows a node), for the
 // shift-invert eigen-solver's repeated solves (internal to mechanics/).
 //
-// With CHOLMOD (native builds): the nodes ordered by METIS's nested dissection
-// of the node graph (cholmod_metis, a third of the rows CHOLMOD's own analysis
-// orders: 0.12 s instead of 0.21 s on the 10^4-panel array, the same fill
-// within 2 %), each node's three rows kept together; the supernodal numeric
+// With CHOLMOD (native builds): the nodes ordered by AMD or, on graphs of 1000
+// nodes and more, by the better of AMD and METIS's nested dissection (a third of
+// the rows CHOLMOD's own analysis orders: 0.12 s instead of 0.21 s on the
+// 10^4-panel array, the same fill within 2 %), each node's three rows kept
+// together; the supernodal numeric
 // factorization on the calling thread (cholmod_threads.h) and on huge pages
 // (cholmod_memory.h); the solves by supernodal_solve.h. Elsewhere (WebAssembly)
 // Eigen's simplicial LDL^T with AMD.
@@ -32,6 +33,8 @@ class NodeCholesky {
   /// (column-major, in and out the same array or apart): about the cost of one
   /// solve with CHOLMOD (supernodal_solve4).
   void solve4(const double* in, double* out) const;
+  /// The factor's entries (its lower triangle and diagonal): what the ordering decides.
+  double factor_entries() const;
 
  private:
   struct Factor;
