@@ -187,11 +187,10 @@ std::optional<Eigen::MatrixXd> block_lanczos_largest(const ApplyFour& apply, con
         converged = (r * ritz.eigenvectors().col(col).tail(b)).norm() <= tolerance * std::abs(theta);
       }
       if (converged) {
-        Eigen::MatrixXd vectors(n, nev);
-        for (Eigen::Index i = 0; i < nev; ++i) {
-          vectors.col(i) = q.leftCols(size) * ritz.eigenvectors().col(size - 1 - i);
-          vectors.col(i).normalize();
-        }
+        // One product for all: the basis read once, not once a vector.
+        const Eigen::MatrixXd y = ritz.eigenvectors().rightCols(nev).rowwise().reverse();
+        Eigen::MatrixXd vectors = q.leftCols(size) * y;
+        vectors.colwise().normalize();
         return vectors;
       }
     }
