@@ -1,5 +1,6 @@
 #include "block_lanczos.h"
 
+#include "lane4.h"
 #include "phedra/cpu_clones.h"
 
 #include <algorithm>
@@ -9,96 +10,44 @@
 namespace phedra {
 namespace {
 
-// Four doubles (GCC's and Clang's vector extension), as in supernodal_solve.cpp;
-// the helpers are always inlined: no vector crosses a call (-Wpsabi).
-#if defined(__GNUC__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-typedef double Lane4 __attribute__((vector_size(32)));
-[[gnu::always_inline]] inline Lane4 load4(const double* p) {
-  Lane4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store4(double* p, Lane4 v) { std::memcpy(p, &v, sizeof v); }
-[[gnu::always_inline]] inline double sum4(Lane4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
-
-/// c (count x 4, column-major) += q's columns' dot products with w's four columns
-/// over rows [0, len) (q's columns ld apart, w's n apart); len a multiple of four.
-/// Two of q's columns at a time: eight independent sums.
-[[gnu::always_inline]] inline void add_dots(const double* q, std::size_t ld, Eigen::Index count, const double* w,
-                                            std::size_t n, Eigen::Index len, double* c) {
-  const double *w0 = w, *w1 = w + n, *w2 = w + 2 * n, *w3 = w + 3 * n;
-  Eigen::Index j = 0;
-  for (; j + 2 <= count; j += 2) {
-    const double *a = q + static_cast<std::size_t>(j) * ld, *b = a + ld;
-    Lane4 a0{}, a1{}, a2{}, a3{}, b0{}, b1{}, b2{}, b3{};
-    for (Eigen::Index i = 0; i < len; i += 4) {
-      const Lane4 x = load4(a + i), y = load4(b + i), v0 = load4(w0 + i), v1 = load4(w1 + i), v2 = load4(w2 + i),
-                  v3 = load4(w3 + i);
-      a0 += x * v0;
-      a1 += x * v1;
-      a2 += x * v2;
-      a3 += x * v3;
-      b0 += y * v0;
-      b1 += y * v1;
-      b2 += y * v2;
-      b3 += y * v3;
+/// c (count x 4, column-major) += the dot products of q's columns j .. j + C with
+/// w's four columns over rows [0, len) (q's columns ld apart, w's n apart); len a
+/// multiple of four. C = 2: eight independent sums.
+template <int C>
+[[gnu::always_inline]] inline void add_dots(const double* q, std::size_t ld, Eigen::Index j, Eigen::Index count,
+                                            const double* w, std::size_t n, Eigen::Index len, double* c) {
+  Lane4 sums[C][4] = {};
+  for (Eigen::Index i = 0; i < len; i += 4) {
+    const Lane4 v[4] = {load4(w + i), load4(w + n + i), load4(w + 2 * n + i), load4(w + 3 * n + i)};
+    for (int k = 0; k < C; ++k) {
+      const Lane4 x = load4(q + static_cast<std::size_t>(j + k) * ld + i);
+      for (int r = 0; r < 4; ++r) sums[k][r] += x * v[r];
     }
-    c[j] += sum4(a0), c[count + j] += sum4(a1), c[2 * count + j] += sum4(a2), c[3 * count + j] += sum4(a3);
-    c[j + 1] += sum4(b0), c[count + j + 1] += sum4(b1), c[2 * count + j + 1] += sum4(b2), c[3 * count + j + 1] += sum4(b3);
   }
-  for (; j < count; ++j) {
-    const double* a = q + static_cast<std::size_t>(j) * ld;
-    Lane4 a0{}, a1{}, a2{}, a3{};
-    for (Eigen::Index i = 0; i < len; i += 4) {
-      const Lane4 x = load4(a + i);
-      a0 += x * load4(w0 + i);
-      a1 += x * load4(w1 + i);
-      a2 += x * load4(w2 + i);
-      a3 += x * load4(w3 + i);
-    }
-    c[j] += sum4(a0), c[count + j] += sum4(a1), c[2 * count + j] += sum4(a2), c[3 * count + j] += sum4(a3);
+  for (int k = 0; k < C; ++k) {
+    for (int r = 0; r < 4; ++r) c[r * count + j + k] += sum4(sums[k][r]);
   }
 }
 
-/// w's four columns -= q c over rows [0, len), eight rows at a time (eight
-/// independent sums over q's columns); len a multiple of four.
+/// w's four columns -= q c over rows [i, i + 4 R) (q's columns ld apart, w's n
+/// apart). R = 2: eight independent sums over q's columns.
+template <int R>
 [[gnu::always_inline]] inline void subtract_products(const double* q, std::size_t ld, Eigen::Index count,
-                                                     const double* c, double* w, std::size_t n, Eigen::Index len) {
-  double *w0 = w, *w1 = w + n, *w2 = w + 2 * n, *w3 = w + 3 * n;
-  Eigen::Index i = 0;
-  for (; i + 8 <= len; i += 8) {
-    Lane4 s0{}, s1{}, s2{}, s3{}, t0{}, t1{}, t2{}, t3{};
-    for (Eigen::Index j = 0; j < count; ++j) {
-      const double* a = q + static_cast<std::size_t>(j) * ld + i;
-      const Lane4 x = load4(a), y = load4(a + 4);
-      const double c0 = c[j], c1 = c[count + j], c2 = c[2 * count + j], c3 = c[3 * count + j];
-      s0 += x * c0;
-      s1 += x * c1;
-      s2 += x * c2;
-      s3 += x * c3;
-      t0 += y * c0;
-      t1 += y * c1;
-      t2 += y * c2;
-      t3 += y * c3;
+                                                     const double* c, double* w, std::size_t n, Eigen::Index i) {
+  Lane4 sums[R][4] = {};
+  for (Eigen::Index j = 0; j < count; ++j) {
+    const double* column = q + static_cast<std::size_t>(j) * ld + i;
+    const double cj[4] = {c[j], c[count + j], c[2 * count + j], c[3 * count + j]};
+    for (int h = 0; h < R; ++h) {
+      const Lane4 x = load4(column + 4 * h);
+      for (int r = 0; r < 4; ++r) sums[h][r] += x * cj[r];
     }
-    store4(w0 + i, load4(w0 + i) - s0), store4(w1 + i, load4(w1 + i) - s1);
-    store4(w2 + i, load4(w2 + i) - s2), store4(w3 + i, load4(w3 + i) - s3);
-    store4(w0 + i + 4, load4(w0 + i + 4) - t0), store4(w1 + i + 4, load4(w1 + i + 4) - t1);
-    store4(w2 + i + 4, load4(w2 + i + 4) - t2), store4(w3 + i + 4, load4(w3 + i + 4) - t3);
   }
-  for (; i < len; i += 4) {
-    Lane4 s0{}, s1{}, s2{}, s3{};
-    for (Eigen::Index j = 0; j < count; ++j) {
-      const Lane4 x = load4(q + static_cast<std::size_t>(j) * ld + i);
-      s0 += x * c[j];
-      s1 += x * c[count + j];
-      s2 += x * c[2 * count + j];
-      s3 += x * c[3 * count + j];
+  for (int h = 0; h < R; ++h) {
+    for (int r = 0; r < 4; ++r) {
+      double* target = w + static_cast<std::size_t>(r) * n + i + 4 * h;
+      store4(target, load4(target) - sums[h][r]);
     }
-    store4(w0 + i, load4(w0 + i) - s0), store4(w1 + i, load4(w1 + i) - s1);
-    store4(w2 + i, load4(w2 + i) - s2), store4(w3 + i, load4(w3 + i) - s3);
   }
 }
 
@@ -111,16 +60,19 @@ PHEDRA_CPU_CLONES void orthogonalize_kernel(const double* q, std::size_t n, Eige
   constexpr Eigen::Index chunk = 512;
   const Eigen::Index rows = static_cast<Eigen::Index>(n), whole = rows / 4 * 4;
   for (Eigen::Index i0 = 0; i0 < whole; i0 += chunk) {
-    add_dots(q + i0, n, count, w + i0, n, std::min(chunk, whole - i0), c);
+    const Eigen::Index len = std::min(chunk, whole - i0);
+    Eigen::Index j = 0;
+    for (; j + 2 <= count; j += 2) add_dots<2>(q + i0, n, j, count, w + i0, n, len, c);
+    if (j < count) add_dots<1>(q + i0, n, j, count, w + i0, n, len, c);
   }
   for (Eigen::Index i = whole; i < rows; ++i) {  // the last rows, fewer than four
     for (Eigen::Index j = 0; j < count; ++j) {
       for (int r = 0; r < 4; ++r) c[r * count + j] += q[static_cast<std::size_t>(j) * n + i] * w[r * n + i];
     }
   }
-  for (Eigen::Index i0 = 0; i0 < whole; i0 += chunk) {
-    subtract_products(q + i0, n, count, c, w + i0, n, std::min(chunk, whole - i0));
-  }
+  Eigen::Index row = 0;
+  for (; row + 8 <= whole; row += 8) subtract_products<2>(q, n, count, c, w, n, row);
+  if (row < whole) subtract_products<1>(q, n, count, c, w, n, row);
   for (Eigen::Index i = whole; i < rows; ++i) {
     for (int r = 0; r < 4; ++r) {
       double sum = 0.0;

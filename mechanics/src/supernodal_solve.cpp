@@ -1,5 +1,6 @@
 #include "supernodal_solve.h"
 
+#include "lane4.h"
 #include "phedra/cpu_clones.h"
 
 #include <cstddef>
@@ -7,24 +8,6 @@
 
 namespace phedra {
 namespace {
-
-// Four doubles (GCC's and Clang's vector extension: one AVX register, or two SSE2 ones).
-// The helpers that pass them are always inlined and have internal linkage: no call
-// crosses an ABI boundary, so GCC's note that 32-byte vectors pass differently
-// without AVX does not apply (GCC's and Clang's -Wpsabi).
-#if defined(__GNUC__)
-#pragma GCC diagnostic ignored "-Wpsabi"
-#endif
-typedef double Lane4 __attribute__((vector_size(32)));
-
-// Always inlined: each clone gets its own (AVX2 registers in the x86-64-v3 one).
-[[gnu::always_inline]] inline Lane4 load4(const double* p) {
-  Lane4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-[[gnu::always_inline]] inline void store4(double* p, Lane4 v) { std::memcpy(p, &v, sizeof v); }
-[[gnu::always_inline]] inline double sum4(Lane4 v) { return (v[0] + v[1]) + (v[2] + v[3]); }
 
 /// Supernode s of l: its first column, its column count, its rows below them,
 /// its values (column-major, leading dimension ld) and those rows' indices.
