@@ -183,7 +183,9 @@ def _on_dask(store, pending, setup, key, scheduler, workers, bar):
     try:
         threads = max(sum(client.nthreads().values()), 1)
         window = max(4 * threads, 8)
-        remote_setup = client.scatter(setup, broadcast=True, hash=False)
+        # A task's result, not scattered data (_evaluate.shared_setup): recomputed
+        # when the worker holding it dies.
+        remote_setup = client.submit(_evaluate.shared_setup, setup, key=f"phedra-atlas-setup-{key}", pure=False)
         queue = list(pending)
 
         def submit(k):

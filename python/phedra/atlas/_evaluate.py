@@ -171,6 +171,14 @@ _children = {}
 _children_lock = threading.Lock()
 
 
+def shared_setup(setup):
+    """The sweep's setup as a task's result, which the chunks' tasks depend on.
+    Not scattered data: Dask's active memory manager keeps one replica of a
+    scattered key, and a scattered key lost with its worker cannot be made again
+    (every task depending on it is cancelled); a task's result is recomputed."""
+    return setup
+
+
 def evaluate_chunk(setup, key, rows):
     """The results of `rows` (parameter values), in a child process of this
     thread's own (a Dask task runs this)."""
