@@ -13,6 +13,7 @@
 #include "phedra/metamaterial_metrics.h"
 #include "phedra/mechanics_figures.h"
 #include "phedra/bench_cases.h"
+#include "phedra/chart.h"
 #include "support/cli_run.h"
 #include "../mechanics/src/vector_atan2.h"  // atan2_many (internal to mechanics/)
 #include "../mechanics/src/dense_svd.h"     // right_singular (internal to mechanics/)
@@ -34,6 +35,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <regex>
 #include <numbers>
 #include <set>
 #include <vector>
@@ -565,6 +567,38 @@ TEST_CASE("the Cholesky factor's ordering: nested dissection where it has fewer 
   solves(chain, chain_factor);
   CHECK(chain_factor.factor_entries() == 6.0 * length + 9.0 * (length - 1));  // no fill: AMD's
   CHECK(amd_entries(chain) == chain_factor.factor_entries());
+}
+
+TEST_CASE("charts: every glyph inside the page, the shared axis's label drawn where the last panel has its own axis",
+          "[mechanics]") {
+  // cairo writes text as glyphs placed at their baselines (<use ... x= y=>).
+  const auto baselines = [](const std::string& svg) {
+    std::vector<double> ys;
+    const std::regex glyph(R"re(<use xlink:href="#glyph[0-9-]+" x="[-0-9.e]+" y="([-0-9.e]+)")re");
+    for (std::sregex_iterator it(svg.begin(), svg.end(), glyph), end; it != end; ++it) ys.push_back(std::stod((*it)[1]));
+    return ys;
+  };
+  const auto page_height = [](const std::string& svg) {
+    std::smatch m;
+    REQUIRE(std::regex_search(svg, m, std::regex(R"re(height="([0-9.]+)pt")re")));
+    return std::stod(m[1]);
+  };
+  ChartSeries line{"a line", {0.0, 0.5, 1.0}, {1.0, 2.0, 1.5}, 0, false};
+  ChartPanel shared{"on the chart's axis", "y", {}, "", false, {line}, {}, {}, {}, {}};
+  ChartPanel own{"on an axis of its own", "y", std::pair{10.0, 20.0}, "stroke", false, {line}, {}, {}, {}, {}};
+  own.series[0].x = {10.0, 15.0, 20.0};
+  for (const std::vector<ChartPanel>& panels : {std::vector<ChartPanel>{shared}, std::vector<ChartPanel>{shared, shared},
+                                                std::vector<ChartPanel>{shared, shared, own}}) {
+    Chart chart{"title", "subtitle", "motion parameter t", 0.0, 1.0, panels};
+    const std::string svg = chart_svg(chart);
+    const std::vector<double> ys = baselines(svg);
+    REQUIRE_FALSE(ys.empty());
+    // A 13-point label's descenders reach about 3 points below its baseline.
+    CHECK(*std::max_element(ys.begin(), ys.end()) <= page_height(svg) - 8.0);
+    // The chart's x label is drawn once (a glyph a character, spaces too), whichever panel carries it.
+    chart.x_label.clear();
+    CHECK(baselines(chart_svg(chart)).size() + std::string("motion parameter t").size() == ys.size());
+  }
 }
 
 TEST_CASE("huge pages: a virtio balloon that reports free pages is recognized, nothing else is", "[mechanics]") {

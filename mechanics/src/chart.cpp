@@ -16,7 +16,7 @@ namespace phedra {
 namespace {
 
 constexpr double page_width = 960.0, panel_height = 300.0, margin_left = 92.0, margin_right = 250.0, margin_top = 78.0, panel_gap = 70.0,
-                 margin_bottom = 56.0;
+                 margin_bottom = 56.0, panel_title_space = 18.0;
 
 const double palette[][3] = {{0.12, 0.47, 0.71}, {0.84, 0.15, 0.16}, {0.17, 0.63, 0.17}, {0.58, 0.40, 0.74},
                              {1.00, 0.50, 0.05}, {0.55, 0.34, 0.29}, {0.89, 0.47, 0.76}, {0.50, 0.50, 0.50},
@@ -64,7 +64,7 @@ std::string power_label(int p) {
   return "1e" + std::to_string(p);
 }
 
-void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double y0, bool last) {
+void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double y0, bool axis_label) {
   const double w = page_width - margin_left - margin_right, h = panel_height;
   const double x_lo = panel.x_range ? panel.x_range->first : chart.x_lo;
   const double x_hi = panel.x_range ? panel.x_range->second : chart.x_hi;
@@ -121,7 +121,7 @@ void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double
   for (std::size_t i = 0; i < xt.values.size(); ++i) text(cr, xt.labels[i], sx(xt.values[i]), y0 + h + 17, 12, 0.5);
   if (panel.x_range) {
     text(cr, panel.x_label, margin_left + w / 2, y0 + h + 38, 13, 0.5);
-  } else if (last) {
+  } else if (axis_label) {
     text(cr, chart.x_label, margin_left + w / 2, y0 + h + 38, 13, 0.5);
   }
   text(cr, panel.title, margin_left, y0 - 10, 14, 0.0, true);
@@ -208,7 +208,10 @@ void draw_panel(cairo_t* cr, const Chart& chart, const ChartPanel& panel, double
 }
 
 double chart_height(const Chart& chart) {
-  return margin_top + static_cast<double>(chart.panels.size()) * (panel_height + panel_gap) - panel_gap + margin_bottom;
+  // Each panel's frame starts panel_title_space below its slot (draw_chart): without
+  // it the last x label's baseline sat on the page's edge, its descenders cut off.
+  return margin_top + panel_title_space + static_cast<double>(chart.panels.size()) * (panel_height + panel_gap) -
+         panel_gap + margin_bottom;
 }
 
 void draw(cairo_t* cr, const Chart& chart) {
@@ -218,10 +221,16 @@ void draw(cairo_t* cr, const Chart& chart) {
   text(cr, chart.title, margin_left, 30, 17, 0.0, true);
   cairo_set_source_rgb(cr, 0.3, 0.3, 0.3);
   text(cr, chart.subtitle, margin_left, 52, 12.5);
+  // The chart's x label under the last panel on the chart's own axis (the energy's
+  // force panel below it has an axis of its own: the label had gone with it).
+  std::size_t labelled = chart.panels.size();
+  for (std::size_t p = 0; p < chart.panels.size(); ++p) {
+    if (!chart.panels[p].x_range) labelled = p;
+  }
   for (std::size_t p = 0; p < chart.panels.size(); ++p) {
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    draw_panel(cr, chart, chart.panels[p], margin_top + static_cast<double>(p) * (panel_height + panel_gap) + 18,
-               p + 1 == chart.panels.size());
+    draw_panel(cr, chart, chart.panels[p], margin_top + static_cast<double>(p) * (panel_height + panel_gap) + panel_title_space,
+               p == labelled);
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 
 namespace phedra {
@@ -102,6 +103,13 @@ Chart modes_chart(const ModesOverInterval& m) {
   for (auto& [id, series] : tracks) {
     if (shown++ >= 10) series.label.clear();  // the legend keeps the first ten
     eigen.series.push_back(series);
+  }
+  if (tracks.size() > 10) {  // drawn in the palette's ten colours again: say so beside the legend
+    const std::size_t first_unlisted = std::next(tracks.begin(), 10)->first;
+    eigen.notes.push_back("modes " + std::to_string(first_unlisted) + "-" + std::to_string(tracks.rbegin()->first) +
+                          " drawn, not listed:");
+    eigen.notes.push_back("their colours are those of");
+    eigen.notes.push_back("modes " + std::to_string(first_unlisted - 10) + "-" + std::to_string(tracks.rbegin()->first - 10));
   }
   for (const ModeCrossing& c : m.crossings) {
     // Where the two tracks meet: between the configurations, at their mean value.
